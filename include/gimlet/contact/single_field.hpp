@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// One grid velocity field for all bodies.
+
+#include "gimlet/contact/concepts.hpp"
+
+namespace gimlet::contact {
+
+/// The "no contact algorithm" case of standard MPM (Sulsky et al. 1994): every body maps to the
+/// same nodal velocity, so bodies stick where their particles share nodes and cannot separate.
+/// The grid holds a single field; no contact step runs.
+struct single_field {
+    static constexpr bool multi_field = false;
+    using required_fields = field_list<>;
+};
+
+static_assert(Contact<single_field>);
+
+}  // namespace gimlet::contact

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// OpenMP pragmas that vanish (without unknown-pragma warnings) when OpenMP is off.
+
+#if defined(_OPENMP)
+#include <omp.h>
+#define GIMLET_OMP(x) _Pragma(GIMLET_OMP_STR(omp x))
+#define GIMLET_OMP_STR(x) #x
+#else
+#define GIMLET_OMP(x)
+#endif
+
+namespace gimlet::detail {
+
+/// The thread count OpenMP would use (1 without OpenMP).
+[[nodiscard]] inline int default_threads() noexcept {
+#if defined(_OPENMP)
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+}  // namespace gimlet::detail

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// One particle's interpolation stencil: the 1-D weights and gradients of each axis, computed
+/// once per step and shared by every transfer (P2G, G2P, velocity gradient). N-D weights are
+/// their tensor product (PHYSICS.md section 2).
+
+#include "gimlet/core/grid.hpp"
+#include "gimlet/core/space.hpp"
+
+#include <array>
+#include <cstddef>
+
+namespace gimlet::detail {
+
+/// \tparam S the space, \tparam W the nodes per axis of the shape function.
+template <Space S, int W>
+struct stencil {
+    using real = typename S::real;
+    using vector = typename S::vector;
+    static constexpr int dim = S::dim;
+
+    std::array<std::array<int, W>, dim> offset;  ///< storage offset of each node along each axis
+    std::array<std::array<real, W>, dim> w;      ///< 1-D weights
+    std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
+
+    /// \param x particle position (m); \param half_width per axis, in cell units.
+    template <class Shape>
+    void compute_with(const grid<S>& g, const vector& x, const vector& half_width) {
+        for (int d = 0; d < dim; ++d) {
+            const real xc = (x[d] - g.spec().lower[d]) * g.inv_cell();
+            int first = 0;
+            Shape::weights(xc, half_width[d], first, w[d].data(), dw[d].data());
+            for (int a = 0; a < W; ++a) {
+                offset[d][a] = g.axis_offset(d, first + a);
+                dw[d][a] *= g.inv_cell();
+            }
+        }
+    }
+
+    /// Call f(node, weight, gradient) for every node of the stencil.
+    template <class F>
+    void for_each(F&& f) const {
+        if constexpr (dim == 2) {
+            for (int b = 0; b < W; ++b)
+                for (int a = 0; a < W; ++a) {
+                    const vector g(dw[0][a] * w[1][b], w[0][a] * dw[1][b]);
+                    f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b], g);
+                }
+        } else {
+            for (int c = 0; c < W; ++c)
+                for (int b = 0; b < W; ++b)
+                    for (int a = 0; a < W; ++a) {
+                        const real wbc = w[1][b] * w[2][c];
+                        const vector g(dw[0][a] * wbc, w[0][a] * dw[1][b] * w[2][c], w[0][a] * w[1][b] * dw[2][c]);
+                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]), w[0][a] * wbc, g);
+                    }
+        }
+    }
+};
+
+}  // namespace gimlet::detail

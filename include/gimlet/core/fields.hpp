@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Particle fields as tag types. A tag names a per-particle quantity and its value type for a
+/// given space; storage is keyed by the tag, never by index or by value type. Every policy
+/// declares the tags it needs; the particle store holds their union.
+///
+/// Users add their own fields by writing a tag with the same two members:
+/// \code
+/// struct damage {
+///     template <class S> using type = typename S::real;
+///     static constexpr const char* name = "damage";
+/// };
+/// \endcode
+/// An optional `template <class S> static type<S> initial()` gives the value a new particle
+/// starts with; without it the value is zero.
+
+#include "gimlet/core/space.hpp"
+
+#include <concepts>
+#include <cstdint>
+#include <type_traits>
+
+namespace gimlet {
+
+/// A field tag: a value type per space and a name (used in output and error messages).
+template <class Tag>
+concept Field = requires {
+    typename Tag::template type<space<2, double>>;
+    typename Tag::template type<space<3, double>>;
+    { Tag::name } -> std::convertible_to<const char*>;
+};
+
+/// An ordered set of field tags.
+template <Field... Tags>
+struct field_list {
+    static constexpr std::size_t size = sizeof...(Tags);
+};
+
+namespace detail {
+
+template <class List, class Tag>
+struct list_contains;
+template <class... Ts, class Tag>
+struct list_contains<field_list<Ts...>, Tag> : std::bool_constant<(std::is_same_v<Ts, Tag> || ...)> {};
+
+template <class Acc, class... Tags>
+struct append_unique;
+template <class Acc>
+struct append_unique<Acc> {
+    using type = Acc;
+};
+template <class... As, class T, class... Rest>
+struct append_unique<field_list<As...>, T, Rest...> {
+    using next = std::conditional_t<list_contains<field_list<As...>, T>::value, field_list<As...>,
+                                    field_list<As..., T>>;
+    using type = typename append_unique<next, Rest...>::type;
+};
+
+template <class Acc, class... Lists>
+struct union_of;
+template <class Acc>
+struct union_of<Acc> {
+    using type = Acc;
+};
+template <class Acc, class... Ts, class... Rest>
+struct union_of<Acc, field_list<Ts...>, Rest...> {
+    using type = typename union_of<typename append_unique<Acc, Ts...>::type, Rest...>::type;
+};
+
+template <class T>
+struct is_field_list : std::false_type {};
+template <class... Ts>
+struct is_field_list<field_list<Ts...>> : std::true_type {};
+
+}  // namespace detail
+
+/// True if `List` contains `Tag`.
+template <class List, class Tag>
+inline constexpr bool contains_field_v = detail::list_contains<List, Tag>::value;
+
+/// The union of several field lists, first occurrence order, no duplicates.
+template <class... Lists>
+using field_union_t = typename detail::union_of<field_list<>, Lists...>::type;
+
+/// A type is a field list.
+template <class T>
+concept FieldList = detail::is_field_list<T>::value;
+
+/// The value a new particle's field starts with: `Tag::initial<S>()` if given, else zero.
+template <Field Tag, Space S>
+[[nodiscard]] typename Tag::template type<S> field_initial_value() {
+    using T = typename Tag::template type<S>;
+    if constexpr (requires { { Tag::template initial<S>() } -> std::convertible_to<T>; }) {
+        return Tag::template initial<S>();
+    } else if constexpr (requires { T::Zero(); }) {
+        return T::Zero();
+    } else {
+        return T{};
+    }
+}
+
+/// The fields of the core solver, present in every scene.
+namespace fields {
+
+/// Position x_p (m).
+struct position {
+    template <class S> using type = typename S::vector;
+    static constexpr const char* name = "position";
+};
+/// Velocity v_p (m/s).
+struct velocity {
+    template <class S> using type = typename S::vector;
+    static constexpr const char* name = "velocity";
+};
+/// Mass m_p (kg; per unit thickness in 2-D).
+struct mass {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "mass";
+};
+/// Reference volume V_p^0 (m^3; m^2 per unit thickness in 2-D). Current volume is det(F) V^0.
+struct volume0 {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "volume0";
+};
+/// Deformation gradient F_p (in-plane; F_zz = 1 in plane strain).
+struct deformation_gradient {
+    template <class S> using type = typename S::matrix;
+    static constexpr const char* name = "deformation_gradient";
+    template <class S> static type<S> initial() { return type<S>::Identity(); }
+};
+/// Cauchy stress sigma_p (Pa), in-plane components.
+struct stress {
+    template <class S> using type = typename S::matrix;
+    static constexpr const char* name = "stress";
+};
+/// Out-of-plane Cauchy stress sigma_zz (Pa); only 2-D (plane strain) scenes carry it.
+struct stress_zz {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "stress_zz";
+};
+/// Specific internal energy e (J/kg), integrated from the stress power sigma:D / rho.
+struct specific_internal_energy {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "specific_internal_energy";
+};
+/// Which body the particle belongs to (index into the scene's bodies).
+struct body {
+    template <class S> using type = std::uint32_t;
+    static constexpr const char* name = "body";
+};
+/// Initial half-width of the particle's domain per axis (m); GIMP shape functions need it.
+struct domain_half_width {
+    template <class S> using type = typename S::vector;
+    static constexpr const char* name = "domain_half_width";
+};
+/// Temperature T (K); only scenes with a thermal policy carry it.
+struct temperature {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "temperature";
+};
+
+}  // namespace fields
+
+/// The fields every scene has. 2-D adds the out-of-plane stress of plane strain.
+template <Space S>
+using core_fields = std::conditional_t<
+    S::dim == 2,
+    field_list<fields::position, fields::velocity, fields::mass, fields::volume0,
+               fields::deformation_gradient, fields::stress, fields::stress_zz,
+               fields::specific_internal_energy, fields::body>,
+    field_list<fields::position, fields::velocity, fields::mass, fields::volume0,
+               fields::deformation_gradient, fields::stress, fields::specific_internal_energy,
+               fields::body>>;
+
+}  // namespace gimlet

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The background grid: a uniform patch of nodes covering the domain plus a ghost layer, with a
+/// boundary condition per axis. The patch has a global origin index so a later domain
+/// decomposition can hand each rank a patch without changing the node arithmetic.
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/space.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace gimlet {
+
+/// Boundary condition on one axis of the grid.
+enum class boundary {
+    periodic,  ///< the domain wraps around; particles leaving one side enter the other
+    slip,      ///< rigid frictionless wall: normal velocity zero at and beyond the boundary nodes
+    fixed,     ///< rigid sticking wall: all velocity components zero at and beyond the boundary
+    free,      ///< no condition; the grid simply ends (a particle reaching the end stops the run)
+};
+
+/// Geometry of the domain: [lower, upper] per axis, cell size h, boundary per axis.
+template <Space S>
+struct grid_spec {
+    using real = typename S::real;
+    typename S::vector lower = S::vector::Zero();
+    typename S::vector upper = S::vector::Ones();
+    real cell = real(0.1);
+    std::array<boundary, S::dim> bc{};  ///< defaults to periodic on every axis
+};
+
+namespace detail {
+inline const char* axis_name(int d) { return d == 0 ? "x" : d == 1 ? "y" : "z"; }
+}  // namespace detail
+
+/// Node arithmetic and nodal fields of a uniform grid.
+///
+/// Node k along axis d (k may be negative: ghost nodes) sits at lower_d + k h. On a periodic axis
+/// with N cells there are N distinct nodes and k wraps modulo N; on other axes nodes
+/// k = -ghost .. N + ghost are stored.
+template <Space S>
+class grid {
+public:
+    using real = typename S::real;
+    using vector = typename S::vector;
+    static constexpr int dim = S::dim;
+
+    /// \param spec  the domain; validated (cell > 0, extent a whole number of cells, ...).
+    /// \param ghost ghost nodes beyond each non-periodic boundary (the shape stencil width).
+    grid(const grid_spec<S>& spec, int ghost) : spec_(spec), ghost_(ghost) {
+        require_positive("grid cell size h (m)", double(spec.cell));
+        std::size_t count = 1;
+        for (int d = 0; d < dim; ++d) {
+            const std::string ax = detail::axis_name(d);
+            require_finite("grid lower bound " + ax + " (m)", double(spec.lower[d]));
+            require_finite("grid upper bound " + ax + " (m)", double(spec.upper[d]));
+            const double extent = double(spec.upper[d]) - double(spec.lower[d]);
+            require(extent > 0, "grid extent along " + ax + " (upper - lower, m)", extent, "> 0");
+            const double n = extent / double(spec.cell);
+            const double nr = std::round(n);
+            require(nr >= 1 && std::abs(n - nr) <= 1e-6 * nr,
+                    "grid extent along " + ax + " in cells ((upper - lower) / h)", n,
+                    "a whole number >= 1 (make the extent a multiple of the cell size)");
+            cells_[d] = static_cast<int>(nr);
+            periodic_[d] = spec.bc[d] == boundary::periodic;
+            if (periodic_[d]) {
+                require(cells_[d] >= ghost, "periodic grid cells along " + ax, cells_[d],
+                        ">= " + std::to_string(ghost) + " (the shape stencil width)");
+                nodes_[d] = cells_[d];
+                offset_[d] = 0;
+            } else {
+                nodes_[d] = cells_[d] + 1 + 2 * ghost;
+                offset_[d] = ghost;
+            }
+            stride_[d] = static_cast<int>(count);
+            count *= static_cast<std::size_t>(nodes_[d]);
+        }
+        size_ = count;
+        inv_cell_ = real(1) / spec.cell;
+        mass.assign(size_, real(0));
+        momentum.assign(size_, vector::Zero());
+        force.assign(size_, vector::Zero());
+        velocity.assign(size_, vector::Zero());
+        velocity_old.assign(size_, vector::Zero());
+    }
+
+    [[nodiscard]] const grid_spec<S>& spec() const noexcept { return spec_; }
+    [[nodiscard]] real cell() const noexcept { return spec_.cell; }
+    [[nodiscard]] real inv_cell() const noexcept { return inv_cell_; }
+    [[nodiscard]] int cells(int d) const noexcept { return cells_[d]; }
+    [[nodiscard]] int nodes(int d) const noexcept { return nodes_[d]; }
+    [[nodiscard]] bool periodic(int d) const noexcept { return periodic_[d]; }
+    [[nodiscard]] int ghost() const noexcept { return ghost_; }
+    [[nodiscard]] std::size_t size() const noexcept { return size_; }
+
+    /// Storage offset along axis d of node k (multiplied by the axis stride).
+    [[nodiscard]] int axis_offset(int d, int k) const noexcept {
+        int i = k + offset_[d];
+        if (periodic_[d]) {
+            i %= nodes_[d];
+            if (i < 0) i += nodes_[d];
+        }
+        return i * stride_[d];
+    }
+    /// True if node k along axis d is stored (always on a periodic axis).
+    [[nodiscard]] bool stored(int d, int k) const noexcept {
+        return periodic_[d] || (k + offset_[d] >= 0 && k + offset_[d] < nodes_[d]);
+    }
+    /// Global node index along axis d of a storage index.
+    [[nodiscard]] int node_of(int d, int storage) const noexcept { return storage - offset_[d]; }
+
+    /// Multi-index (per-axis storage indices) of a flat node index.
+    [[nodiscard]] std::array<int, dim> unflatten(std::size_t flat) const noexcept {
+        std::array<int, dim> idx{};
+        for (int d = 0; d < dim; ++d) {
+            idx[d] = static_cast<int>(flat % static_cast<std::size_t>(nodes_[d]));
+            flat /= static_cast<std::size_t>(nodes_[d]);
+        }
+        return idx;
+    }
+    /// Position of a node given its per-axis storage indices.
+    [[nodiscard]] vector position(const std::array<int, dim>& idx) const noexcept {
+        vector x;
+        for (int d = 0; d < dim; ++d) x[d] = spec_.lower[d] + real(node_of(d, idx[d])) * spec_.cell;
+        return x;
+    }
+
+    /// Zero the nodal fields before a particle-to-grid transfer.
+    void clear() {
+        std::fill(mass.begin(), mass.end(), real(0));
+        std::fill(momentum.begin(), momentum.end(), vector::Zero());
+        std::fill(force.begin(), force.end(), vector::Zero());
+    }
+
+    /// Impose the wall conditions on a nodal velocity field: on a slip or fixed axis, nodes at
+    /// and beyond the boundary (k <= 0 or k >= N) lose the normal (slip) or every (fixed)
+    /// component. Ghost nodes beyond a wall belong to the rigid wall.
+    void apply_walls(std::vector<vector>& v) const {
+        for (int d = 0; d < dim; ++d) {
+            const boundary b = spec_.bc[d];
+            if (b != boundary::slip && b != boundary::fixed) continue;
+            for (std::size_t n = 0; n < size_; ++n) {
+                const int k = node_of(d, static_cast<int>((n / static_cast<std::size_t>(stride_[d])) %
+                                                          static_cast<std::size_t>(nodes_[d])));
+                if (k > 0 && k < cells_[d]) continue;
+                if (b == boundary::slip) v[n][d] = real(0);
+                else v[n].setZero();
+            }
+        }
+    }
+
+    /// Wrap a position into the domain along periodic axes.
+    void wrap(vector& x) const noexcept {
+        for (int d = 0; d < dim; ++d) {
+            if (!periodic_[d]) continue;
+            const real len = spec_.upper[d] - spec_.lower[d];
+            if (x[d] < spec_.lower[d]) x[d] += len * std::ceil((spec_.lower[d] - x[d]) / len);
+            if (x[d] >= spec_.upper[d]) x[d] -= len * std::floor((x[d] - spec_.lower[d]) / len);
+            if (x[d] >= spec_.upper[d]) x[d] = spec_.lower[d];  // round-off at the seam
+        }
+    }
+    /// True if x lies in the domain along every non-periodic axis.
+    [[nodiscard]] bool inside(const vector& x) const noexcept {
+        for (int d = 0; d < dim; ++d)
+            if (!periodic_[d] && !(x[d] >= spec_.lower[d] && x[d] <= spec_.upper[d])) return false;
+        return true;
+    }
+
+    std::vector<real> mass;            ///< m_i
+    std::vector<vector> momentum;      ///< (mv)_i
+    std::vector<vector> force;         ///< f_i
+    std::vector<vector> velocity;      ///< v_i after the momentum update (and BCs, contact)
+    std::vector<vector> velocity_old;  ///< v_i^n = (mv)_i / m_i before the update (for FLIP)
+
+private:
+    grid_spec<S> spec_;
+    int ghost_;
+    std::array<int, dim> cells_{}, nodes_{}, offset_{}, stride_{};
+    std::array<bool, dim> periodic_{};
+    std::size_t size_ = 0;
+    real inv_cell_ = 1;
+};
+
+}  // namespace gimlet

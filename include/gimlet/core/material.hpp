@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// A material: one policy from each constitutive family plus the reference density. Each body
+/// of a scene has its own material object (its own parameter values); all bodies of a solver
+/// share the policy types, so the step is specialised at compile time.
+
+#include "gimlet/core/elastic_moduli.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/eos/concepts.hpp"
+#include "gimlet/eos/linear.hpp"
+#include "gimlet/strength/concepts.hpp"
+#include "gimlet/strength/linear_elastic.hpp"
+#include "gimlet/thermal/concepts.hpp"
+#include "gimlet/thermal/none.hpp"
+#include "gimlet/viscosity/concepts.hpp"
+#include "gimlet/viscosity/none.hpp"
+
+namespace gimlet {
+
+/// A material model composed of policies.
+/// \tparam St strength (deviatoric law), \tparam E equation of state,
+/// \tparam T thermal model (thermal::none: no temperature), \tparam V artificial viscosity.
+template <strength::Strength St, eos::Eos E, thermal::Thermal T = thermal::none,
+          viscosity::Viscosity V = viscosity::none>
+struct material {
+    using strength_type = St;
+    using eos_type = E;
+    using thermal_type = T;
+    using viscosity_type = V;
+    /// The per-particle fields the material needs: the union of its policies' lists.
+    using required_fields = field_union_t<typename St::required_fields, typename E::required_fields, typename T::required_fields,
+                                 typename V::required_fields>;
+
+    double density;  ///< reference density rho_0 (kg/m^3)
+    St strength;
+    E eos;
+    T thermal{};
+    V viscosity{};
+
+    /// Throws invalid_parameter for a bad density; the policies validate themselves.
+    void validate() const { require_positive("density rho0 (kg/m^3)", density); }
+};
+
+/// A type is a material bundle.
+template <class M>
+concept Material = requires(const M& m) {
+    typename M::strength_type;
+    typename M::eos_type;
+    typename M::thermal_type;
+    typename M::viscosity_type;
+    typename M::required_fields;
+    { m.density } -> std::convertible_to<double>;
+    m.validate();
+};
+
+/// The elastic material of the verification tests: hypoelastic deviatoric stress plus the
+/// linear EOS, from density (kg/m^3), Young's modulus (Pa) and Poisson's ratio.
+using elastic_material = material<strength::linear_elastic, eos::linear>;
+
+[[nodiscard]] inline elastic_material make_elastic_material(double density, double young, double poisson) {
+    require_positive("density rho0 (kg/m^3)", density);
+    const auto k = elastic_moduli::from_young_poisson(young, poisson);
+    return {density, strength::linear_elastic{k.shear}, eos::linear{k.bulk}};
+}
+
+}  // namespace gimlet

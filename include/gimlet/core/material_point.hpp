@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// What the solver hands to the constitutive policies (strength, eos, viscosity, thermal) for
+/// one particle: its kinematic state and, during an update, the step's rates. Tensors are 3x3
+/// in both 2-D and 3-D: in plane strain the out-of-plane rows are zero in D and W, and the
+/// stress carries sigma_zz (PHYSICS.md section 4), so a law written once works in both.
+
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/particle_store.hpp"
+
+#include <cstddef>
+
+namespace gimlet {
+
+/// The state of a material point between steps.
+template <class Real>
+struct point_state {
+    Real J = 1;         ///< det F, current volume over reference volume
+    Real density = 0;   ///< current density m_p / (J V_p^0)
+    Real density0 = 0;  ///< reference density of the body's material
+};
+
+/// One constitutive update over a time step (PHYSICS.md section 1, step 5).
+template <class Real>
+struct point_step : point_state<Real> {
+    using tensor3 = Eigen::Matrix<Real, 3, 3>;
+    Real dt = 0;               ///< time step
+    Real J_old = 1;            ///< det F at the start of the step
+    tensor3 D = tensor3::Zero();  ///< rate of deformation, sym(L)
+    tensor3 W = tensor3::Zero();  ///< spin, skew(L)
+    Real length = 0;           ///< particle length scale (current volume^(1/dim)), for viscosity
+    std::size_t step = 0;      ///< step number, for error messages
+};
+
+/// The particle handle a policy sees in concept checks: a store holding the core fields plus
+/// the policy's own. Real stores hold more (the union of every policy's fields).
+template <int Dim, class Policy>
+using archetype_particle = particle_ref<particle_store<
+    space<Dim, double>, field_union_t<core_fields<space<Dim, double>>, typename Policy::required_fields>>>;
+
+}  // namespace gimlet

@@ -1,0 +1,495 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The explicit GIMP solver: policies composed at compile time into one step.
+
+#include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/single_field.hpp"
+#include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/stencil.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/core/material.hpp"
+#include "gimlet/core/material_point.hpp"
+#include "gimlet/core/particle_store.hpp"
+#include "gimlet/scene/scene.hpp"
+#include "gimlet/shape/concepts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gimlet {
+
+/// Order of the stress update within a step (Bardenhagen 2002; Wallstedt & Guilkey 2008).
+enum class update_scheme {
+    musl,  ///< modified update stress last: stress from re-mapped particle velocities (default)
+    usl,   ///< update stress last, from the updated grid velocities
+    usf,   ///< update stress first, from the velocities of the particle-to-grid map
+};
+
+/// Run-time options of the step. Validated when the solver is built.
+template <Space S>
+struct solver_options {
+    update_scheme scheme = update_scheme::musl;
+    /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP).
+    double pic_fraction = 0.0;
+    /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (PHYSICS.md section 1, step 6).
+    double cfl = 0.4;
+    /// Nodes lighter than this fraction of the heaviest particle's mass are treated as empty
+    /// (zero velocity), never divided by. In [0, 1e-3].
+    double mass_cutoff = 1e-12;
+    /// Upper bound on the time step (s), > 0.
+    double max_time_step = std::numeric_limits<double>::infinity();
+    /// Body force per unit mass (m/s^2), e.g. gravity.
+    typename S::vector body_force = S::vector::Zero();
+    /// OpenMP threads for the particle and node loops; 0 = the OpenMP default. Results do not
+    /// depend on it: every reduction runs in a fixed order.
+    int threads = 0;
+
+    void validate() const {
+        require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
+        require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
+        require(mass_cutoff >= 0.0 && mass_cutoff <= 1e-3, "mass_cutoff", mass_cutoff, "[0, 1e-3]");
+        require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
+        for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
+        require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");
+    }
+};
+
+/// The explicit GIMP/MPM solver (PHYSICS.md section 1).
+///
+/// \tparam S  the space (dimension 2 = plane strain, or 3; float or double).
+/// \tparam Sh the shape-function policy (shape::Shape).
+/// \tparam M  the material bundle every body uses (gimlet::material<...>).
+/// \tparam C  the contact policy (contact::Contact).
+///
+/// The particle store holds exactly the union of the fields the policies declare; a policy
+/// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field>
+class solver {
+public:
+    using space_type = S;
+    using real = typename S::real;
+    using vector = typename S::vector;
+    using matrix = typename S::matrix;
+    using tensor3 = typename S::tensor3;
+    using shape_type = Sh;
+    using material_type = M;
+    using contact_type = C;
+    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields, typename C::required_fields>;
+    using store_type = particle_store<S, particle_fields>;
+    static constexpr int dim = S::dim;
+
+    static_assert(!C::multi_field, "multi-field contact needs the contact policies of gimlet/contact/");
+
+    /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
+    /// the grid, overlapping bodies or a body with no particles.
+    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {})
+        : options_(options), grid_(sc.grid(), Sh::stencil) {
+        options_.validate();
+        require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
+        for (const auto& b : sc.bodies()) materials_.push_back(b.material);
+        fill(sc);
+        real heaviest = 0;
+        for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
+        mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+    }
+
+    /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
+    real step() { return step(stable_time_step()); }
+
+    /// Advance one step of the given size (s). Throws numerical_error if the run breaks down.
+    real step(real dt) {
+        require(std::isfinite(double(dt)) && dt > 0, "time step dt (s)", double(dt), "finite and > 0");
+        advance(dt);
+        return dt;
+    }
+
+    /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/).
+    template <class... Observers>
+    void run_until(real t_end, Observers&... observers) {
+        require(std::isfinite(double(t_end)), "end time (s)", double(t_end), "finite");
+        (observers.maybe_call(*this), ...);
+        while (time_ < t_end) {
+            const real dt = std::min(stable_time_step(), t_end - time_);
+            advance(dt);
+            if (t_end - time_ < real(1e-12) * t_end) time_ = t_end;  // no sliver step at the end
+            (observers.maybe_call(*this), ...);
+        }
+    }
+
+    /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
+    /// (PHYSICS.md section 1, step 6).
+    [[nodiscard]] real stable_time_step() const {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        real fastest = 0;
+        GIMLET_OMP(parallel for reduction(max : fastest) num_threads(threads()))
+        for (std::ptrdiff_t i = 0; i < n; ++i) {
+            const auto p = particles_[static_cast<std::size_t>(i)];
+            const real c = wave_speed(p);
+            fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
+        }
+        real dt = real(options_.max_time_step);
+        if (fastest > 0) dt = std::min(dt, real(options_.cfl) * grid_.cell() / fastest);
+        return dt;
+    }
+
+    /// Longitudinal wave speed of particle p: sqrt((K + 4G/3) / rho).
+    template <class P>
+    [[nodiscard]] real wave_speed(const P& p) const {
+        const M& mat = materials_[p.template get<fields::body>()];
+        const point_state<real> st = state_of(p, mat);
+        const real k = mat.eos.bulk_modulus(st, p);
+        const real g = mat.strength.shear_modulus(st, p);
+        return std::sqrt(std::max(real(0), (k + real(4) / real(3) * g) / st.density));
+    }
+
+    /// Current volume of particle p: det(F) V^0.
+    template <class P>
+    [[nodiscard]] static real volume(const P& p) {
+        return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::volume0>();
+    }
+
+    /// Full 3x3 Cauchy stress of particle p (plane strain: sigma_zz from its own field).
+    template <class P>
+    [[nodiscard]] static tensor3 stress3(const P& p) {
+        tensor3 s = embed3<real, dim>(p.template get<fields::stress>());
+        if constexpr (dim == 2) s(2, 2) = p.template get<fields::stress_zz>();
+        return s;
+    }
+
+    /// Mean pressure -tr(sigma)/3 of particle p (Pa, compression positive).
+    template <class P>
+    [[nodiscard]] static real pressure(const P& p) {
+        return -stress3(p).trace() / real(3);
+    }
+
+    [[nodiscard]] store_type& particles() noexcept { return particles_; }
+    [[nodiscard]] const store_type& particles() const noexcept { return particles_; }
+    [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
+    [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
+    [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
+    [[nodiscard]] real time() const noexcept { return time_; }
+    [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
+
+private:
+    using stencil_type = detail::stencil<S, Sh::stencil>;
+
+    [[nodiscard]] int threads() const noexcept {
+        return options_.threads > 0 ? options_.threads : detail::default_threads();
+    }
+
+    template <class P>
+    [[nodiscard]] static point_state<real> state_of(const P& p, const M& mat) {
+        point_state<real> st;
+        st.J = p.template get<fields::deformation_gradient>().determinant();
+        st.density0 = real(mat.density);
+        st.density = p.template get<fields::mass>() / (st.J * p.template get<fields::volume0>());
+        return st;
+    }
+
+    // ---- scene to particles -------------------------------------------------------------
+
+    void fill(const scene::scene<S, M>& sc) {
+        const auto& gs = sc.grid();
+        const auto& bodies = sc.bodies();
+        for (std::uint32_t b = 0; b < bodies.size(); ++b) {
+            const auto& body = bodies[b];
+            const real delta = gs.cell / real(body.particles_per_cell);
+            // Particles sit at the centres of a sub-cell lattice aligned with the grid, so bodies
+            // whose edges lie on grid lines are filled exactly.
+            std::array<long, dim> lo{}, hi{};
+            for (int d = 0; d < dim; ++d) {
+                const std::string ax = detail::axis_name(d);
+                require(body.lower[d] >= gs.lower[d] - real(1e-9) * gs.cell &&
+                            body.upper[d] <= gs.upper[d] + real(1e-9) * gs.cell,
+                        "extent of " + body.name + " along " + ax + " (m, from " +
+                            detail::to_text(double(body.lower[d])) + ")",
+                        double(body.upper[d]),
+                        "inside the grid [" + detail::to_text(double(gs.lower[d])) + ", " +
+                            detail::to_text(double(gs.upper[d])) + "]");
+                lo[d] = static_cast<long>(std::floor((body.lower[d] - gs.lower[d]) / delta));
+                hi[d] = static_cast<long>(std::ceil((body.upper[d] - gs.lower[d]) / delta));
+            }
+            const std::size_t first = particles_.size();
+            std::array<long, dim> j = lo;
+            while (true) {
+                vector x;
+                for (int d = 0; d < dim; ++d) x[d] = gs.lower[d] + (real(j[d]) + real(0.5)) * delta;
+                if (grid_.inside(x) && body.contains(x)) {
+                    for (std::uint32_t o = 0; o < b; ++o)
+                        if (bodies[o].contains(x))
+                            throw invalid_parameter("bodies", body.name + " and " + bodies[o].name,
+                                                    "non-overlapping (they share the point " +
+                                                        format_vector(x) + ")");
+                    add_particle(body, b, x, delta);
+                }
+                int d = 0;
+                while (d < dim && ++j[d] >= hi[d]) j[d] = lo[d], ++d;
+                if (d == dim) break;
+            }
+            require(particles_.size() > first, "particle count of " + body.name, 0.0,
+                    ">= 1 (the region holds no particle-lattice point: too small for the cell, "
+                    "or its cavity removes all of it)");
+        }
+    }
+
+    void add_particle(const scene::body<S, M>& body, std::uint32_t id, const vector& x, real delta) {
+        const std::size_t i = particles_.add();
+        auto p = particles_[i];
+        const real vol = std::pow(delta, real(dim));
+        p.template get<fields::position>() = x;
+        p.template get<fields::velocity>() = body.velocity;
+        p.template get<fields::volume0>() = vol;
+        p.template get<fields::mass>() = real(body.material.density) * vol;
+        p.template get<fields::body>() = id;
+        if constexpr (store_type::template has<fields::domain_half_width>)
+            p.template get<fields::domain_half_width>() = vector::Constant(delta / real(2));
+        if constexpr (M::thermal_type::enabled) body.material.thermal.initialize(p);
+    }
+
+    // ---- the step -----------------------------------------------------------------------
+
+    void advance(real dt) {
+        compute_stencils();
+        grid_.clear();
+        map_mass_momentum();
+        nodal_velocity(grid_.velocity_old);
+        if (options_.scheme == update_scheme::usf) {
+            grid_.velocity = grid_.velocity_old;
+            grid_.apply_walls(grid_.velocity);
+            update_material_points(dt, grid_.velocity);
+        }
+        map_forces();
+        update_grid_momentum(dt);
+        grid_to_particles(dt);
+        if (options_.scheme == update_scheme::musl) {
+            remap_momentum();
+            update_material_points(dt, grid_.velocity);
+        } else if (options_.scheme == update_scheme::usl) {
+            update_material_points(dt, grid_.velocity);
+        }
+        ++steps_;
+        time_ += dt;
+        check_particles();
+    }
+
+    // Weights at x^n, computed once and shared by every transfer of the step.
+    void compute_stencils() {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        stencils_.resize(particles_.size());
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        for (std::ptrdiff_t i = 0; i < n; ++i) {
+            const auto p = particles_[static_cast<std::size_t>(i)];
+            stencils_[static_cast<std::size_t>(i)].template compute_with<Sh>(
+                grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
+        }
+    }
+
+    // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p (PHYSICS.md section 1, step 1). Serial scatter:
+    // the summation order is the particle order, whatever the thread count.
+    void map_mass_momentum() {
+        const auto& m = particles_.template column<fields::mass>();
+        const auto& v = particles_.template column<fields::velocity>();
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+            const real mp = m[i];
+            const vector mv = mp * v[i];
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                grid_.mass[node] += w * mp;
+                grid_.momentum[node] += w * mv;
+            });
+        }
+    }
+
+    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1).
+    void map_forces() {
+        const auto& m = particles_.template column<fields::mass>();
+        const auto& sig = particles_.template column<fields::stress>();
+        const vector b = options_.body_force.template cast<real>();
+        const bool gravity = !b.isZero();
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+            const matrix vs = volume(particles_[i]) * sig[i];
+            const vector mb = m[i] * b;
+            stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
+                grid_.force[node] -= vs * g;
+                if (gravity) grid_.force[node] += w * mb;
+            });
+        }
+    }
+
+    // v_i = (mv)_i / m_i where m_i is above the cut-off, else 0 (PHYSICS.md section 1, step 2).
+    void nodal_velocity(std::vector<vector>& out) {
+        const auto n = static_cast<std::ptrdiff_t>(grid_.size());
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            out[i] = grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
+        }
+    }
+
+    // (mv)_i += dt f_i, then boundary conditions (PHYSICS.md section 1, step 2).
+    void update_grid_momentum(real dt) {
+        const auto n = static_cast<std::ptrdiff_t>(grid_.size());
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            grid_.momentum[i] += dt * grid_.force[i];
+            grid_.velocity[i] =
+                grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
+        }
+        grid_.apply_walls(grid_.velocity);
+    }
+
+    // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
+    // (PHYSICS.md section 1, step 3).
+    void grid_to_particles(real dt) {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        auto& x = particles_.template column<fields::position>();
+        auto& v = particles_.template column<fields::velocity>();
+        const real alpha = real(options_.pic_fraction);
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            vector v_pic = vector::Zero(), dv = vector::Zero();
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                v_pic += w * grid_.velocity[node];
+                dv += w * (grid_.velocity[node] - grid_.velocity_old[node]);
+            });
+            x[i] += dt * v_pic;
+            v[i] = (real(1) - alpha) * (v[i] + dv) + alpha * v_pic;
+        }
+    }
+
+    // MUSL: the updated particle momenta mapped back to the grid (PHYSICS.md section 1, step 4).
+    void remap_momentum() {
+        std::fill(grid_.momentum.begin(), grid_.momentum.end(), vector::Zero());
+        const auto& m = particles_.template column<fields::mass>();
+        const auto& v = particles_.template column<fields::velocity>();
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+            const vector mv = m[i] * v[i];
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[node] += w * mv; });
+        }
+        nodal_velocity(grid_.velocity);
+        grid_.apply_walls(grid_.velocity);
+    }
+
+    // L_p = sum v_i (x) G_ip; F <- (I + dt L) F; then the constitutive policies
+    // (PHYSICS.md section 1, step 5 and section 4: sigma = s - (P + q) I).
+    void update_material_points(real dt, const std::vector<vector>& vg) {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        std::ptrdiff_t failed = n;
+        std::exception_ptr error;
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            try {
+                update_material_point(static_cast<std::size_t>(k), dt, vg);
+            } catch (...) {
+                GIMLET_OMP(critical(gimlet_material_error))
+                if (k < failed) failed = k, error = std::current_exception();
+            }
+        }
+        if (error) std::rethrow_exception(error);
+    }
+
+    void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
+        auto p = particles_[i];
+        matrix L = matrix::Zero();
+        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[node] * g.transpose(); });
+        matrix& F = p.template get<fields::deformation_gradient>();
+        const real j_old = F.determinant();
+        F = (matrix::Identity() + dt * L) * F;
+        const M& mat = materials_[p.template get<fields::body>()];
+
+        point_step<real> st;
+        static_cast<point_state<real>&>(st) = state_of(p, mat);
+        if (!(st.J > 0) || !std::isfinite(st.J)) fail(i, "det F = " + detail::to_text(double(st.J)) + " <= 0 (inverted particle)");
+        st.dt = dt;
+        st.J_old = j_old;
+        const tensor3 l3 = embed3<real, dim>(L);
+        st.D = real(0.5) * (l3 + l3.transpose());
+        st.W = real(0.5) * (l3 - l3.transpose());
+        st.length = std::pow(st.J * p.template get<fields::volume0>(), real(1) / real(dim));
+        st.step = steps_;
+
+        const tensor3 sigma_old = stress3(p);
+        tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();
+        const real dissipated = mat.strength.update(st, s, p);
+        real q = 0;
+        if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, wave_speed(p), p);
+        const real pres = mat.eos.pressure(st, p);
+        const tensor3 sigma_new = s - (pres + q) * tensor3::Identity();
+        // de = (dt / rho) sigma_mid : D, the stress power per unit mass, midpoint in time.
+        p.template get<fields::specific_internal_energy>() +=
+            dt / st.density * (real(0.5) * (sigma_old + sigma_new)).cwiseProduct(st.D).sum();
+        if constexpr (M::thermal_type::enabled) mat.thermal.update(st, dissipated, p);
+        else (void)dissipated;
+        p.template get<fields::stress>() = in_plane<dim>(sigma_new);
+        if constexpr (dim == 2) p.template get<fields::stress_zz>() = sigma_new(2, 2);
+    }
+
+    // Stop on non-finite values, inverted particles or particles off the grid; report the
+    // lowest-numbered offender so the message does not depend on the thread count.
+    void check_particles() {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        auto& x = particles_.template column<fields::position>();
+        std::ptrdiff_t first_bad = n;
+        GIMLET_OMP(parallel for reduction(min : first_bad) num_threads(threads()))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            grid_.wrap(x[i]);
+            if (!problem(i).empty()) first_bad = std::min(first_bad, k);
+        }
+        if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+    }
+
+    [[nodiscard]] std::string problem(std::size_t i) const {
+        const auto p = particles_[i];
+        const auto& x = p.template get<fields::position>();
+        if (!x.allFinite()) return "position is not finite";
+        if (!p.template get<fields::velocity>().allFinite()) return "velocity is not finite";
+        if (!p.template get<fields::stress>().allFinite()) return "stress is not finite";
+        if (!std::isfinite(p.template get<fields::specific_internal_energy>())) return "internal energy is not finite";
+        const real j = p.template get<fields::deformation_gradient>().determinant();
+        if (!(j > 0)) return "det F = " + detail::to_text(double(j)) + " <= 0 (inverted particle)";
+        if (!grid_.inside(x)) return "left the grid through a non-periodic boundary";
+        return {};
+    }
+
+    [[noreturn]] void fail(std::size_t i, const std::string& what) const {
+        const auto p = particles_[i];
+        std::ostringstream os;
+        os << "gimlet: step " << steps_ << " (t = " << double(time_) << " s): particle " << i << " ("
+           << materials_name(p.template get<fields::body>()) << ") at "
+           << format_vector(p.template get<fields::position>()) << ": " << what;
+        throw numerical_error(os.str());
+    }
+
+    [[nodiscard]] static std::string materials_name(std::uint32_t b) { return "body " + std::to_string(b); }
+
+    [[nodiscard]] static std::string format_vector(const vector& x) {
+        std::ostringstream os;
+        os.precision(8);
+        os << "(";
+        for (int d = 0; d < dim; ++d) os << (d ? ", " : "") << double(x[d]);
+        os << ") m";
+        return os.str();
+    }
+
+    solver_options<S> options_;
+    grid<S> grid_;
+    std::vector<M> materials_;
+    store_type particles_;
+    std::vector<stencil_type> stencils_;
+    real mass_cutoff_ = 0;
+    real time_ = 0;
+    std::uint64_t steps_ = 0;
+};
+
+}  // namespace gimlet

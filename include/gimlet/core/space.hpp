@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The space a solver works in: its dimension and its scalar type, and the small fixed-size
+/// Eigen types derived from them.
+
+#include <Eigen/Core>
+#include <Eigen/LU>  // determinant
+#include <concepts>
+
+namespace gimlet {
+
+/// Dimension and scalar type of a simulation.
+/// \tparam Dim  2 (plane strain) or 3.
+/// \tparam Real float or double.
+template <int Dim, std::floating_point Real = double>
+struct space {
+    static_assert(Dim == 2 || Dim == 3, "gimlet supports Dim = 2 (plane strain) and Dim = 3");
+    static constexpr int dim = Dim;
+    using real = Real;
+    using vector = Eigen::Matrix<Real, Dim, 1>;
+    using ivector = Eigen::Matrix<int, Dim, 1>;
+    using matrix = Eigen::Matrix<Real, Dim, Dim>;
+    /// Constitutive laws always work on 3x3 tensors; in plane strain the out-of-plane
+    /// components are carried explicitly (PHYSICS.md section 4: s_zz != 0).
+    using tensor3 = Eigen::Matrix<Real, 3, 3>;
+};
+
+/// A type is a space if it names a dimension and the derived types.
+template <class S>
+concept Space = requires {
+    { S::dim } -> std::convertible_to<int>;
+    typename S::real;
+    typename S::vector;
+    typename S::matrix;
+    typename S::tensor3;
+};
+
+/// Embed an in-plane tensor into 3x3 (zero out-of-plane entries); identity in 3-D.
+template <class Real, int Dim>
+[[nodiscard]] Eigen::Matrix<Real, 3, 3> embed3(const Eigen::Matrix<Real, Dim, Dim>& a) {
+    if constexpr (Dim == 3) {
+        return a;
+    } else {
+        Eigen::Matrix<Real, 3, 3> r = Eigen::Matrix<Real, 3, 3>::Zero();
+        r.template topLeftCorner<2, 2>() = a;
+        return r;
+    }
+}
+
+/// The in-plane block of a 3x3 tensor; identity in 3-D.
+template <int Dim, class Real>
+[[nodiscard]] Eigen::Matrix<Real, Dim, Dim> in_plane(const Eigen::Matrix<Real, 3, 3>& a) {
+    return a.template topLeftCorner<Dim, Dim>();
+}
+
+}  // namespace gimlet

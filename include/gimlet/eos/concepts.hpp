@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The equation-of-state contract.
+
+#include "gimlet/core/material_point.hpp"
+
+#include <concepts>
+
+namespace gimlet::eos {
+
+/// An EOS policy gives the pressure of a material point and its tangent bulk modulus.
+///
+/// - `fields`: field_list of the per-particle state it reads or keeps.
+/// - `pressure(step, p)`: the pressure (Pa, compression positive) at the end of the step, from
+///   `step.J`, `step.density` and the particle's fields. Must throw gimlet::numerical_error
+///   (naming the particle and step) rather than return a non-finite value.
+/// - `bulk_modulus(state, p)`: the current tangent bulk modulus K = -V dP/dV (Pa), for the
+///   time step.
+template <class E>
+concept Eos = requires {
+    typename E::required_fields;
+    requires FieldList<typename E::required_fields>;
+} && requires(const E& e, const point_step<double>& st, const point_state<double>& ps,
+              const archetype_particle<2, E>& p2, const archetype_particle<3, E>& p3) {
+    { e.pressure(st, p2) } -> std::convertible_to<double>;
+    { e.pressure(st, p3) } -> std::convertible_to<double>;
+    { e.bulk_modulus(ps, p2) } -> std::convertible_to<double>;
+    { e.bulk_modulus(ps, p3) } -> std::convertible_to<double>;
+};
+
+}  // namespace gimlet::eos

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Everything gimlet offers, in one include.
+
+#include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/single_field.hpp"
+#include "gimlet/core/elastic_moduli.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/core/material.hpp"
+#include "gimlet/core/material_point.hpp"
+#include "gimlet/core/particle_store.hpp"
+#include "gimlet/core/solver.hpp"
+#include "gimlet/core/space.hpp"
+#include "gimlet/diagnostics/conservation.hpp"
+#include "gimlet/diagnostics/schedule.hpp"
+#include "gimlet/eos/concepts.hpp"
+#include "gimlet/eos/linear.hpp"
+#include "gimlet/scene/geometry.hpp"
+#include "gimlet/scene/scene.hpp"
+#include "gimlet/shape/all.hpp"
+#include "gimlet/strength/concepts.hpp"
+#include "gimlet/strength/linear_elastic.hpp"
+#include "gimlet/strength/none.hpp"
+#include "gimlet/thermal/concepts.hpp"
+#include "gimlet/thermal/none.hpp"
+#include "gimlet/viscosity/concepts.hpp"
+#include "gimlet/viscosity/none.hpp"

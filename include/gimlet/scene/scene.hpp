@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// A scene: the grid and the bodies that fill it. Built in C++, validated as it is built; the
+/// solver turns it into particles.
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/core/material.hpp"
+#include "gimlet/scene/geometry.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gimlet::scene {
+
+/// One body: a region filled with particles of one material, moving at an initial velocity.
+template <Space S, Material M>
+struct body {
+    using vector = typename S::vector;
+    std::string name;                          ///< used in messages and output
+    M material;                                ///< its parameter values
+    vector velocity = vector::Zero();          ///< initial velocity (m/s)
+    int particles_per_cell = 2;                ///< per axis; particle size is h / this
+    std::function<bool(const vector&)> contains;  ///< the region (set-up only, never in the step)
+    vector lower = vector::Zero(), upper = vector::Zero();  ///< the region's bounding box
+};
+
+/// The grid and the bodies of a simulation.
+/// \tparam S the space, \tparam M the material type every body uses (its values may differ).
+template <Space S, Material M>
+class scene {
+public:
+    using vector = typename S::vector;
+    using body_type = body<S, M>;
+
+    explicit scene(const grid_spec<S>& grid) : grid_(grid) {}
+
+    /// Add a body filling `region`. Returns the body id (its index).
+    /// \param particles_per_cell particles per cell per axis, 1 to 8.
+    template <Region<S> R>
+    std::uint32_t add_body(const R& region, const M& material, const vector& velocity,
+                           int particles_per_cell = 2, std::string name = {}) {
+        material.validate();
+        require(particles_per_cell >= 1 && particles_per_cell <= 8, "particles_per_cell",
+                particles_per_cell, "1 to 8 (per axis)");
+        for (int d = 0; d < S::dim; ++d) require_finite("initial velocity component (m/s)", double(velocity[d]));
+        if (name.empty()) name = "body " + std::to_string(bodies_.size());
+        bodies_.push_back(body_type{std::move(name), material, velocity, particles_per_cell,
+                                    [region](const vector& x) { return bool(region.contains(x)); },
+                                    region.lower(), region.upper()});
+        return static_cast<std::uint32_t>(bodies_.size() - 1);
+    }
+
+    [[nodiscard]] const grid_spec<S>& grid() const noexcept { return grid_; }
+    [[nodiscard]] const std::vector<body_type>& bodies() const noexcept { return bodies_; }
+
+private:
+    grid_spec<S> grid_;
+    std::vector<body_type> bodies_;
+};
+
+}  // namespace gimlet::scene

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Hypoelastic isotropic linear elasticity for the deviatoric stress, Jaumann rate.
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/strength/concepts.hpp"
+
+namespace gimlet::strength {
+
+/// Deviatoric hypoelastic law with the Jaumann (co-rotational) rate:
+/// \f[ s^{n+1} = s^n + \Delta t\,(2 G D' + W s^n - s^n W) \f]
+/// (PHYSICS.md section 4; the elastic predictor of the reference paper's plasticity model).
+/// The Jaumann terms keep a rigidly rotating stressed body's stress rotating with it and leave
+/// an unstressed one unstressed. Combine with an EOS for the pressure (e.g. eos::linear).
+class linear_elastic {
+public:
+    using required_fields = field_list<>;
+
+    /// \param shear_modulus G in Pa, finite and > 0.
+    explicit linear_elastic(double shear_modulus) : g_(shear_modulus) {
+        require_positive("shear modulus G (Pa)", shear_modulus);
+    }
+
+    template <class Real, class P>
+    Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& /*p*/) const {
+        const Eigen::Matrix<Real, 3, 3> d_dev =
+            st.D - (st.D.trace() / Real(3)) * Eigen::Matrix<Real, 3, 3>::Identity();
+        s += st.dt * (Real(2 * g_) * d_dev + st.W * s - s * st.W);
+        return Real(0);
+    }
+
+    template <class Real, class P>
+    [[nodiscard]] Real shear_modulus(const point_state<Real>& /*state*/, const P& /*p*/) const {
+        return Real(g_);
+    }
+
+    [[nodiscard]] double shear_modulus() const noexcept { return g_; }
+
+private:
+    double g_;
+};
+
+static_assert(Strength<linear_elastic>);
+
+}  // namespace gimlet::strength

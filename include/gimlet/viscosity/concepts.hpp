@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The artificial-viscosity contract.
+
+#include "gimlet/core/material_point.hpp"
+
+#include <concepts>
+
+namespace gimlet::viscosity {
+
+/// An artificial-viscosity policy.
+///
+/// - `enabled`: false for viscosity::none. The solver removes every viscosity step with
+///   `if constexpr` when it is false, so an inactive policy costs nothing.
+/// - `fields`: field_list of the per-particle state it needs.
+/// - `pressure(step, sound_speed, p)`: the viscous pressure q >= 0 (Pa), added to the EOS
+///   pressure: sigma = s - (P + q) I.
+template <class V>
+concept Viscosity = requires {
+    { V::enabled } -> std::convertible_to<bool>;
+    typename V::required_fields;
+    requires FieldList<typename V::required_fields>;
+} && (!V::enabled || requires(const V& v, const point_step<double>& st, double c,
+                                const archetype_particle<2, V>& p2,
+                                const archetype_particle<3, V>& p3) {
+    { v.pressure(st, c, p2) } -> std::convertible_to<double>;
+    { v.pressure(st, c, p3) } -> std::convertible_to<double>;
+});
+
+}  // namespace gimlet::viscosity

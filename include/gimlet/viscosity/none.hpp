@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// No artificial viscosity.
+
+#include "gimlet/viscosity/concepts.hpp"
+
+namespace gimlet::viscosity {
+
+/// Artificial viscosity off: q = 0, and no viscosity code is compiled into the step.
+struct none {
+    static constexpr bool enabled = false;
+    using required_fields = field_list<>;
+};
+
+static_assert(Viscosity<none>);
+
+}  // namespace gimlet::viscosity
