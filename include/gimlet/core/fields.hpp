@@ -154,6 +154,13 @@ struct domain_half_width {
     template <class S> using type = typename S::vector;
     static constexpr const char* name = "domain_half_width";
 };
+/// External acceleration b_p (m/s^2) applied to this particle: the solver adds S_ip m_p b_p to
+/// the nodal force when the store has this field (e.g. a manufactured-solution body force). Ask
+/// for it through the solver's `ExtraFields`; scenes without it pay nothing.
+struct external_acceleration {
+    template <class S> using type = typename S::vector;
+    static constexpr const char* name = "external_acceleration";
+};
 /// Temperature T (K); only scenes with a thermal policy carry it.
 struct temperature {
     template <class S> using type = typename S::real;

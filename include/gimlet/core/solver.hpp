@@ -12,6 +12,7 @@
 #include "gimlet/core/grid.hpp"
 #include "gimlet/core/material.hpp"
 #include "gimlet/core/material_point.hpp"
+#include "gimlet/core/material_update.hpp"
 #include "gimlet/core/particle_store.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/concepts.hpp"
@@ -69,10 +70,13 @@ struct solver_options {
 /// \tparam Sh the shape-function policy (shape::Shape).
 /// \tparam M  the material bundle every body uses (gimlet::material<...>).
 /// \tparam C  the contact policy (contact::Contact).
+/// \tparam ExtraFields fields the user wants stored besides the policies' (their own tags for
+///         observers, or fields::external_acceleration for a per-particle body force).
 ///
 /// The particle store holds exactly the union of the fields the policies declare; a policy
 /// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field>
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
+          FieldList ExtraFields = field_list<>>
 class solver {
 public:
     using space_type = S;
@@ -83,7 +87,7 @@ public:
     using shape_type = Sh;
     using material_type = M;
     using contact_type = C;
-    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields, typename C::required_fields>;
+    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields, typename C::required_fields, ExtraFields>;
     using store_type = particle_store<S, particle_fields>;
     static constexpr int dim = S::dim;
 
@@ -144,31 +148,7 @@ public:
     /// Longitudinal wave speed of particle p: sqrt((K + 4G/3) / rho).
     template <class P>
     [[nodiscard]] real wave_speed(const P& p) const {
-        const M& mat = materials_[p.template get<fields::body>()];
-        const point_state<real> st = state_of(p, mat);
-        const real k = mat.eos.bulk_modulus(st, p);
-        const real g = mat.strength.shear_modulus(st, p);
-        return std::sqrt(std::max(real(0), (k + real(4) / real(3) * g) / st.density));
-    }
-
-    /// Current volume of particle p: det(F) V^0.
-    template <class P>
-    [[nodiscard]] static real volume(const P& p) {
-        return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::volume0>();
-    }
-
-    /// Full 3x3 Cauchy stress of particle p (plane strain: sigma_zz from its own field).
-    template <class P>
-    [[nodiscard]] static tensor3 stress3(const P& p) {
-        tensor3 s = embed3<real, dim>(p.template get<fields::stress>());
-        if constexpr (dim == 2) s(2, 2) = p.template get<fields::stress_zz>();
-        return s;
-    }
-
-    /// Mean pressure -tr(sigma)/3 of particle p (Pa, compression positive).
-    template <class P>
-    [[nodiscard]] static real pressure(const P& p) {
-        return -stress3(p).trace() / real(3);
+        return longitudinal_wave_speed(p, materials_[p.template get<fields::body>()]);
     }
 
     [[nodiscard]] store_type& particles() noexcept { return particles_; }
@@ -184,15 +164,6 @@ private:
 
     [[nodiscard]] int threads() const noexcept {
         return options_.threads > 0 ? options_.threads : detail::default_threads();
-    }
-
-    template <class P>
-    [[nodiscard]] static point_state<real> state_of(const P& p, const M& mat) {
-        point_state<real> st;
-        st.J = p.template get<fields::deformation_gradient>().determinant();
-        st.density0 = real(mat.density);
-        st.density = p.template get<fields::mass>() / (st.J * p.template get<fields::volume0>());
-        return st;
     }
 
     // ---- scene to particles -------------------------------------------------------------
@@ -315,11 +286,14 @@ private:
         const vector b = options_.body_force.template cast<real>();
         const bool gravity = !b.isZero();
         for (std::size_t i = 0; i < particles_.size(); ++i) {
-            const matrix vs = volume(particles_[i]) * sig[i];
-            const vector mb = m[i] * b;
+            const matrix vs = current_volume(particles_[i]) * sig[i];
+            vector mb = m[i] * b;
+            if constexpr (store_type::template has<fields::external_acceleration>)
+                mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
+            const bool loaded = gravity || store_type::template has<fields::external_acceleration>;
             stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
                 grid_.force[node] -= vs * g;
-                if (gravity) grid_.force[node] += w * mb;
+                if (loaded) grid_.force[node] += w * mb;
             });
         }
     }
@@ -380,7 +354,7 @@ private:
         grid_.apply_walls(grid_.velocity);
     }
 
-    // L_p = sum v_i (x) G_ip; F <- (I + dt L) F; then the constitutive policies
+    // L_p = sum v_i (x) G_ip; F update; then the constitutive policies
     // (PHYSICS.md section 1, step 5 and section 4: sigma = s - (P + q) I).
     void update_material_points(real dt, const std::vector<vector>& vg) {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
@@ -402,36 +376,7 @@ private:
         auto p = particles_[i];
         matrix L = matrix::Zero();
         stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[node] * g.transpose(); });
-        matrix& F = p.template get<fields::deformation_gradient>();
-        const real j_old = F.determinant();
-        F = (matrix::Identity() + dt * L) * F;
-        const M& mat = materials_[p.template get<fields::body>()];
-
-        point_step<real> st;
-        static_cast<point_state<real>&>(st) = state_of(p, mat);
-        if (!(st.J > 0) || !std::isfinite(st.J)) fail(i, "det F = " + detail::to_text(double(st.J)) + " <= 0 (inverted particle)");
-        st.dt = dt;
-        st.J_old = j_old;
-        const tensor3 l3 = embed3<real, dim>(L);
-        st.D = real(0.5) * (l3 + l3.transpose());
-        st.W = real(0.5) * (l3 - l3.transpose());
-        st.length = std::pow(st.J * p.template get<fields::volume0>(), real(1) / real(dim));
-        st.step = steps_;
-
-        const tensor3 sigma_old = stress3(p);
-        tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();
-        const real dissipated = mat.strength.update(st, s, p);
-        real q = 0;
-        if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, wave_speed(p), p);
-        const real pres = mat.eos.pressure(st, p);
-        const tensor3 sigma_new = s - (pres + q) * tensor3::Identity();
-        // de = (dt / rho) sigma_mid : D, the stress power per unit mass, midpoint in time.
-        p.template get<fields::specific_internal_energy>() +=
-            dt / st.density * (real(0.5) * (sigma_old + sigma_new)).cwiseProduct(st.D).sum();
-        if constexpr (M::thermal_type::enabled) mat.thermal.update(st, dissipated, p);
-        else (void)dissipated;
-        p.template get<fields::stress>() = in_plane<dim>(sigma_new);
-        if constexpr (dim == 2) p.template get<fields::stress_zz>() = sigma_new(2, 2);
+        gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, steps_, double(time_));
     }
 
     // Stop on non-finite values, inverted particles or particles off the grid; report the
@@ -463,15 +408,8 @@ private:
     }
 
     [[noreturn]] void fail(std::size_t i, const std::string& what) const {
-        const auto p = particles_[i];
-        std::ostringstream os;
-        os << "gimlet: step " << steps_ << " (t = " << double(time_) << " s): particle " << i << " ("
-           << materials_name(p.template get<fields::body>()) << ") at "
-           << format_vector(p.template get<fields::position>()) << ": " << what;
-        throw numerical_error(os.str());
+        throw numerical_error(describe_particle(particles_[i], steps_, double(time_)) + ": " + what);
     }
-
-    [[nodiscard]] static std::string materials_name(std::uint32_t b) { return "body " + std::to_string(b); }
 
     [[nodiscard]] static std::string format_vector(const vector& x) {
         std::ostringstream os;

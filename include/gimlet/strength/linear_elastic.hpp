@@ -5,12 +5,14 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/strength/concepts.hpp"
+#include "gimlet/strength/jaumann.hpp"
 
 namespace gimlet::strength {
 
-/// Deviatoric hypoelastic law with the Jaumann (co-rotational) rate:
-/// \f[ s^{n+1} = s^n + \Delta t\,(2 G D' + W s^n - s^n W) \f]
-/// (PHYSICS.md section 4; the elastic predictor of the reference paper's plasticity model).
+/// Deviatoric hypoelastic law with the Jaumann (co-rotational) rate
+/// \f[ \dot s = 2 G D' + W s - s W \f]
+/// (PHYSICS.md section 4; the elastic predictor of the reference paper's plasticity model),
+/// integrated with the rotation part in incrementally objective form (see jaumann_rotate).
 /// The Jaumann terms keep a rigidly rotating stressed body's stress rotating with it and leave
 /// an unstressed one unstressed. Combine with an EOS for the pressure (e.g. eos::linear).
 class linear_elastic {
@@ -24,9 +26,8 @@ public:
 
     template <class Real, class P>
     Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& /*p*/) const {
-        const Eigen::Matrix<Real, 3, 3> d_dev =
-            st.D - (st.D.trace() / Real(3)) * Eigen::Matrix<Real, 3, 3>::Identity();
-        s += st.dt * (Real(2 * g_) * d_dev + st.W * s - s * st.W);
+        s = jaumann_rotate(st, s);
+        s += st.dt * Real(2 * g_) * deviator(st.D);
         return Real(0);
     }
 
