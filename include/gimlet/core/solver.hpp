@@ -134,7 +134,7 @@ public:
     [[nodiscard]] real stable_time_step() const {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         real fastest = 0;
-        GIMLET_OMP(parallel for reduction(max : fastest) num_threads(threads()))
+        GIMLET_OMP(parallel for reduction(max : fastest) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
             const real c = wave_speed(p);
@@ -161,6 +161,9 @@ public:
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
+    // Loops shorter than this run on one thread: below it, starting a team costs more than the
+    // loop (and a team on a busy machine can stall the whole step).
+    static constexpr std::ptrdiff_t parallel_threshold = 4096;
 
     [[nodiscard]] int threads() const noexcept {
         return options_.threads > 0 ? options_.threads : detail::default_threads();
@@ -256,7 +259,7 @@ private:
     void compute_stencils() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
             stencils_[static_cast<std::size_t>(i)].template compute_with<Sh>(
@@ -301,7 +304,7 @@ private:
     // v_i = (mv)_i / m_i where m_i is above the cut-off, else 0 (PHYSICS.md section 1, step 2).
     void nodal_velocity(std::vector<vector>& out) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             out[i] = grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
@@ -311,7 +314,7 @@ private:
     // (mv)_i += dt f_i, then boundary conditions (PHYSICS.md section 1, step 2).
     void update_grid_momentum(real dt) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             grid_.momentum[i] += dt * grid_.force[i];
@@ -328,7 +331,7 @@ private:
         auto& x = particles_.template column<fields::position>();
         auto& v = particles_.template column<fields::velocity>();
         const real alpha = real(options_.pic_fraction);
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             vector v_pic = vector::Zero(), dv = vector::Zero();
@@ -360,7 +363,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         std::ptrdiff_t failed = n;
         std::exception_ptr error;
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             try {
                 update_material_point(static_cast<std::size_t>(k), dt, vg);
@@ -385,7 +388,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for reduction(min : first_bad) num_threads(threads()))
+        GIMLET_OMP(parallel for reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             grid_.wrap(x[i]);
