@@ -101,7 +101,10 @@ void update_material_point(const M& mat, const P& p,
 
     point_step<real> st;
     static_cast<point_state<real>&>(st) = point_state_of(p, mat);
-    if (!(st.J > 0) || !std::isfinite(st.J))
+    if (!std::isfinite(st.J))
+        throw numerical_error(describe_particle(p, step, time) +
+                              ": velocity gradient is not finite (a non-finite value reached its nodes)");
+    if (!(st.J > 0))
         throw numerical_error(describe_particle(p, step, time) + ": det F = " +
                               detail::to_text(double(st.J)) + " <= 0 (inverted particle)");
     st.dt = dt;

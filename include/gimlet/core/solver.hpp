@@ -151,7 +151,11 @@ public:
         return longitudinal_wave_speed(p, materials_[p.template get<fields::body>()]);
     }
 
-    [[nodiscard]] store_type& particles() noexcept { return particles_; }
+    /// Mutable access to the particles; the next step re-checks them before using them.
+    [[nodiscard]] store_type& particles() noexcept {
+        state_touched_ = true;
+        return particles_;
+    }
     [[nodiscard]] const store_type& particles() const noexcept { return particles_; }
     [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
@@ -232,6 +236,10 @@ private:
     // ---- the step -----------------------------------------------------------------------
 
     void advance(real dt) {
+        // State changed between steps (by the user or a restart) is checked before it spreads
+        // through the grid, so a bad value is blamed on its own particle, not on a neighbour.
+        if (steps_ == 0 || state_touched_) check_particles();
+        state_touched_ = false;
         compute_stencils();
         grid_.clear();
         map_mass_momentum();
@@ -429,6 +437,7 @@ private:
     store_type particles_;
     std::vector<stencil_type> stencils_;
     real mass_cutoff_ = 0;
+    bool state_touched_ = false;
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };
