@@ -16,11 +16,16 @@ namespace gimlet::shape {
 /// A shape-function policy.
 ///
 /// - `stencil`: the number of nodes per axis that can have a non-zero weight (the support).
-/// - `fields`: a field_list of the per-particle fields it reads (empty for fixed stencils).
+/// - `required_fields`: a field_list of the per-particle fields it reads beyond the core ones
+///   (uGIMP and cpGIMP: fields::domain_half_width; empty for fixed stencils).
 /// - `weights(x, l, first, w, dw)`: for a particle at `x` (in cell units, node k sits at x = k)
-///   with half-width `l` (cell units), write the first node index `first` and, for nodes
-///   `first .. first + stencil - 1`, the weights `w[a]` and derivatives `dw[a] = dS/dx` (per
-///   cell). Nodes of the stencil outside the support get exactly zero.
+///   with half-width `l` (cell units, 0 < l <= 1/2 for GIMP's 3-node stencil; ignored by other
+///   families), write the first node index `first` and, for nodes `first .. first + stencil - 1`,
+///   the weights `w[a]` and derivatives `dw[a] = dS/dx` (per cell). Where S has a kink exactly at
+///   x (linear MPM on a node), dw is the derivative from the right, which keeps sum dw = 0.
+///   Nodes of the stencil outside the support get exactly zero. gimlet's policies find `first`
+///   with shape::detail::locate (exact floor arithmetic) rather than floor(x + 1/2), which can
+///   round the wrong way.
 /// - `half_width(p, h)`: the particle's half-width per axis in cell units (zero if unused).
 ///
 /// \code
