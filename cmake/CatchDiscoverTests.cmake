@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: MIT
+# Test discovery for Catch2 v2, run after each test executable is built. It replaces the
+# CatchAddTests.cmake script that catch_discover_tests() (Catch2 v2's Catch.cmake) calls, and
+# takes the same -D inputs, because that script turns the listing into a CMake list: a test
+# name containing ';' (or an unbalanced '[') was split into filters that match no test case,
+# and such ctests "passed" without running anything. Here the listing is split on newlines
+# only, and every name and filter is written as a bracket argument.
+#
+# Inputs used: TEST_EXECUTABLE, TEST_EXECUTOR, TEST_WORKING_DIR, TEST_SPEC, TEST_EXTRA_ARGS,
+# TEST_PROPERTIES, TEST_PREFIX, TEST_SUFFIX, TEST_LIST, CTEST_FILE. (TEST_REPORTER and the
+# TEST_OUTPUT_* options are not supported.)
+
+if(NOT EXISTS "${TEST_EXECUTABLE}")
+    message(FATAL_ERROR "test executable '${TEST_EXECUTABLE}' does not exist")
+endif()
+
+execute_process(
+    COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" ${TEST_SPEC} --list-test-names-only
+    OUTPUT_VARIABLE listing
+    RESULT_VARIABLE result
+    WORKING_DIRECTORY "${TEST_WORKING_DIR}")
+# Catch v2 exits with the number of tests listed (modulo 256); anything else is a crash.
+if(NOT result MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "listing the tests of '${TEST_EXECUTABLE}' failed: ${result}\n${listing}")
+endif()
+
+# Quote `text` as a CMake bracket argument.
+function(_gimlet_bracket out text)
+    set(eq "=")
+    while(text MATCHES "\\]${eq}\\]")
+        string(APPEND eq "=")
+    endwhile()
+    set(${out} "[${eq}[${text}]${eq}]" PARENT_SCOPE)
+endfunction()
+
+set(extra "")
+foreach(arg IN LISTS TEST_EXTRA_ARGS)
+    _gimlet_bracket(q "${arg}")
+    string(APPEND extra " ${q}")
+endforeach()
+set(props "")
+foreach(arg IN LISTS TEST_PROPERTIES)
+    _gimlet_bracket(q "${arg}")
+    string(APPEND props " ${q}")
+endforeach()
+_gimlet_bracket(exe "${TEST_EXECUTABLE}")
+_gimlet_bracket(workdir "${TEST_WORKING_DIR}")
+set(executor "")
+foreach(arg IN LISTS TEST_EXECUTOR)
+    _gimlet_bracket(q "${arg}")
+    string(APPEND executor "${q} ")
+endforeach()
+
+set(script "")
+set(names "")
+string(REPLACE "\r" "" listing "${listing}")
+while(NOT listing STREQUAL "")
+    string(FIND "${listing}" "\n" eol)
+    if(eol EQUAL -1)
+        set(line "${listing}")
+        set(listing "")
+    else()
+        string(SUBSTRING "${listing}" 0 ${eol} line)
+        math(EXPR next "${eol} + 1")
+        string(SUBSTRING "${listing}" ${next} -1 listing)
+    endif()
+    if(line STREQUAL "")
+        continue()
+    endif()
+    # Catch quotes names that start with '#'.
+    if(line MATCHES "^\"(#.*)\"$")
+        set(line "${CMAKE_MATCH_1}")
+    endif()
+
+    # The filter: the exact name, with Catch's special characters escaped.
+    set(filter "${line}")
+    foreach(char IN ITEMS "\\" "," "[" "]")
+        string(REPLACE "${char}" "\\${char}" filter "${filter}")
+    endforeach()
+    # The ctest name: ';' would make it a list, so it becomes ','.
+    string(REPLACE ";" "," name "${TEST_PREFIX}${line}${TEST_SUFFIX}")
+
+    _gimlet_bracket(qname "${name}")
+    _gimlet_bracket(qfilter "${filter}")
+    string(APPEND script "add_test(${qname} ${executor}${exe} ${qfilter}${extra})\n")
+    string(APPEND script "set_tests_properties(${qname} PROPERTIES WORKING_DIRECTORY ${workdir}${props})\n")
+    string(REPLACE ";" "\\;" lname "${name}")
+    list(APPEND names "${lname}")
+endwhile()
+
+if(TEST_LIST)
+    set(all "")
+    foreach(n IN LISTS names)
+        _gimlet_bracket(q "${n}")
+        string(APPEND all " ${q}")
+    endforeach()
+    string(APPEND script "set(${TEST_LIST}${all})\n")
+endif()
+
+file(WRITE "${CTEST_FILE}" "${script}")

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# From a fresh clone to the flagship example's results: install the dependencies, configure
+# and build the release preset (only what the flagship needs), run it.
+set -euo pipefail
+
+FLAGSHIP=sulsky_disks
+FLAGSHIP_ARGS=(--output results/sulsky_disks)
+PRESET=release
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+bash scripts/setup.sh
+cmake --preset "$PRESET"
+cmake --build --preset "$PRESET" --target "$FLAGSHIP" -j2
+
+build_dir="build/$PRESET"
+binary="$build_dir/examples/$FLAGSHIP/$FLAGSHIP"
+if [ ! -x "$binary" ]; then
+    # The example may set its own output directory: look for the executable anywhere in the tree.
+    binary="$(find "$build_dir" -type f -name "$FLAGSHIP" -perm -u+x -print -quit)"
+fi
+if [ -z "$binary" ] || [ ! -x "$binary" ]; then
+    echo "quickstart.sh: built target $FLAGSHIP but found no executable of that name in $build_dir" >&2
+    exit 1
+fi
+
+echo "quickstart.sh: running $binary ${FLAGSHIP_ARGS[*]}"
+"$binary" "${FLAGSHIP_ARGS[@]}"
+
+# Report where the outputs are: the value following --output, if there is one.
+output=""
+for ((i = 0; i < ${#FLAGSHIP_ARGS[@]}; i++)); do
+    if [ "${FLAGSHIP_ARGS[$i]}" = "--output" ] && [ $((i + 1)) -lt ${#FLAGSHIP_ARGS[@]} ]; then
+        output="${FLAGSHIP_ARGS[$((i + 1))]}"
+    fi
+done
+if [ -n "$output" ] && [ -e "$output" ]; then
+    echo "quickstart.sh: outputs are in $repo_root/$output:"
+    find "$output" -maxdepth 2 -type f | sort | head -n 50
+else
+    echo "quickstart.sh: done ($FLAGSHIP wrote its outputs relative to $repo_root)"
+fi
