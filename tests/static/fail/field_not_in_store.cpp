@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Must not compile: reading a field the scene does not store (temperature without a thermal
 // policy) is a compile-time error, never a run-time lookup.
+// GIMLET_FAILTEST_EXPECT: no matching function
 #include <gimlet/gimlet.hpp>
 
 int main() {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Must not compile: a strength policy without shear_modulus() is rejected by the Strength
 // concept where the material is formed (one readable constraint error, not a backtrace).
+// GIMLET_FAILTEST_EXPECT: constraint
 #include <gimlet/gimlet.hpp>
 
 struct broken_strength {
