@@ -161,6 +161,17 @@ struct external_acceleration {
     template <class S> using type = typename S::vector;
     static constexpr const char* name = "external_acceleration";
 };
+/// Equivalent plastic strain eps_p (accumulated, dimensionless); plasticity policies keep it.
+struct plastic_strain {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "plastic_strain";
+};
+/// Plastic work per unit mass w_p = int Y d eps_p / rho (J/kg); plasticity policies keep it,
+/// the reference paper's Mie-Grueneisen variant reads it.
+struct plastic_work {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "plastic_work";
+};
 /// Temperature T (K); only scenes with a thermal policy carry it.
 struct temperature {
     template <class S> using type = typename S::real;

@@ -30,7 +30,15 @@ struct point_step : point_state<Real> {
     tensor3 D = tensor3::Zero();  ///< rate of deformation, sym(L)
     tensor3 W = tensor3::Zero();  ///< spin, skew(L)
     Real length = 0;           ///< particle length scale (current volume^(1/dim)), for viscosity
+    /// Specific internal energy at the end of the step without the pressure's own work:
+    /// e^n + (dt/rho) sigma_mid' : D with sigma_mid' the midpoint stress less the end-of-step
+    /// pressure. The end-of-step energy is `energy_before_pressure - pressure_work_factor * P`,
+    /// so an energy-dependent EOS can solve for P and e together (see eos::mie_gruneisen).
+    Real energy_before_pressure = 0;
+    /// dt tr(D) / (2 rho): the share of the end-of-step pressure in the energy increment.
+    Real pressure_work_factor = 0;
     std::size_t step = 0;      ///< step number, for error messages
+    double time = 0;           ///< simulated time at the start of the step (s), for messages
 };
 
 /// The particle handle a policy sees in concept checks: a store holding the core fields plus

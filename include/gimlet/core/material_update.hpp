@@ -5,6 +5,7 @@
 /// constitutive policies (PHYSICS.md section 1, step 5; section 4). The solver calls it for every
 /// particle; tests call it directly to check a single material point.
 
+#include "gimlet/core/describe.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/material.hpp"
@@ -64,19 +65,6 @@ template <Material M, class P>
     return std::sqrt(std::max(real(0), (k + real(4) / real(3) * g) / st.density));
 }
 
-/// A message naming step, time, particle, body and position, for numerical_error.
-template <class P>
-[[nodiscard]] std::string describe_particle(const P& p, std::size_t step, double time) {
-    const auto& x = p.template get<fields::position>();
-    std::ostringstream os;
-    os.precision(8);
-    os << "gimlet: step " << step << " (t = " << time << " s): particle " << p.index() << " (body "
-       << p.template get<fields::body>() << ") at (";
-    for (int d = 0; d < x.size(); ++d) os << (d ? ", " : "") << double(x[d]);
-    os << ") m";
-    return os.str();
-}
-
 /// Advance particle p over dt given its velocity gradient L:
 /// F <- (I - dt L/2)^-1 (I + dt L/2) F, then s from the strength law, P from the EOS, q from the
 /// viscosity, sigma = s - (P + q) I, e += dt/rho sigma_mid : D, and the thermal update.
@@ -110,6 +98,7 @@ void update_material_point(const M& mat, const P& p,
     st.dt = dt;
     st.J_old = j_old;
     st.step = step;
+    st.time = time;
     const tensor3 l3 = embed3<real, dim>(L);
     st.D = real(0.5) * (l3 + l3.transpose());
     st.W = real(0.5) * (l3 - l3.transpose());
@@ -120,11 +109,18 @@ void update_material_point(const M& mat, const P& p,
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, longitudinal_wave_speed(p, mat), p);
+    // Stress power per unit mass, midpoint in time (PHYSICS.md section 1): de = dt/rho sigma:D,
+    // with sigma^{n+1} = s - (P + q) I. The part without P^{n+1} is known before the EOS is
+    // called; the rest is -pressure_work_factor * P^{n+1}.
+    real& e = p.template get<fields::specific_internal_energy>();
+    const tensor3 known = real(0.5) * (sigma_old + s - q * tensor3::Identity());
+    st.energy_before_pressure = e + dt / st.density * known.cwiseProduct(st.D).sum();
+    st.pressure_work_factor = real(0.5) * dt * st.D.trace() / st.density;
     const real pres = mat.eos.pressure(st, p);
+    if (!std::isfinite(pres))
+        throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");
     const tensor3 sigma_new = s - (pres + q) * tensor3::Identity();
-    // Stress power per unit mass, midpoint in time (PHYSICS.md section 1): de = dt/rho sigma:D.
-    p.template get<fields::specific_internal_energy>() +=
-        dt / st.density * (real(0.5) * (sigma_old + sigma_new)).cwiseProduct(st.D).sum();
+    e = st.energy_before_pressure - st.pressure_work_factor * pres;
     if constexpr (M::thermal_type::enabled) mat.thermal.update(st, dissipated, p);
     else (void)dissipated;
     p.template get<fields::stress>() = in_plane<dim>(sigma_new);
