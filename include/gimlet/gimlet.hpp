@@ -17,6 +17,7 @@
 #include "gimlet/core/solver.hpp"
 #include "gimlet/core/space.hpp"
 #include "gimlet/diagnostics/conservation.hpp"
+#include "gimlet/diagnostics/profile.hpp"
 #include "gimlet/diagnostics/schedule.hpp"
 #include "gimlet/eos/concepts.hpp"
 #include "gimlet/eos/linear.hpp"
