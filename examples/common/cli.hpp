@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,18 @@ public:
             throw std::invalid_argument("--" + name + " = " + *it + " is invalid; valid range: " +
                                         (closed_low ? "[" : "(") + text(lo) + ", " + text(hi) + "]");
         return v;
+    }
+
+    /// A flag that takes one of a fixed set of words.
+    std::string choice(const std::string& name, const std::string& fallback, std::initializer_list<std::string> allowed) {
+        const auto it = take(name);
+        if (!it) return fallback;
+        std::string list;
+        for (const auto& a : allowed) {
+            if (*it == a) return a;
+            list += (list.empty() ? "" : "|") + a;
+        }
+        throw std::invalid_argument("--" + name + " = " + *it + " is invalid; valid: " + list);
     }
 
     /// An output directory flag: created if missing, must be writable.

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The scene of the impact_1d example, its measurements, and the elastic-plastic
+// Rankine-Hugoniot state they are compared with. Shared by the example and its test.
+//
+// Two HMX slabs in uniaxial strain (a narrow strip, periodic across it) hit each other
+// symmetrically at +-v along y: the interface stays at rest and a compressive wave runs into
+// each slab. Below about 210 m/s an elastic precursor runs ahead of the plastic shock.
+
+#include <gimlet/gimlet.hpp>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace impact_1d {
+
+using S = gimlet::space<2>;
+using material = gimlet::materials::hmx_material<>;
+using solver = gimlet::solver<S, gimlet::shape::ugimp, material>;
+
+struct settings {
+    double velocity = 300.0;   // m/s, each slab
+    double cell = 0.1e-3;      // m
+    double length = 20e-3;     // m, each slab
+    double end_time = 3e-6;    // s
+    gimlet::update_scheme scheme = gimlet::update_scheme::usf;
+    int threads = 0;
+};
+
+// ---- the Rankine-Hugoniot state (jump conditions + the material model) -------------------
+
+struct hugoniot_state {
+    double sigma_yy = 0;        // Pa, compression positive, behind the (plastic) shock
+    double pressure = 0;        // Pa
+    double shock_speed = 0;     // m/s, relative to the material ahead of the (plastic) shock
+    bool two_wave = false;      // an elastic precursor runs ahead
+    double precursor_sigma = 0; // Pa, the Hugoniot elastic limit state (two-wave only)
+    double precursor_speed = 0; // m/s (two-wave only)
+    double precursor_velocity = 0;  // m/s, particle-velocity jump across the precursor
+};
+
+// Stress of the model in uniaxial strain on the Hugoniot: sigma = P(eta, e) + 2Y/3 once
+// yielded, with P the Mie-Grueneisen pressure at energy e (standard form). For the elastic part
+// the Jaumann hypoelastic law integrates to s_yy = (4G/3) ln J (compression: |s_yy| grows),
+// which reaches the yield surface at ln J = -Y / (2G).
+inline double model_sigma(const gimlet::eos::mie_gruneisen<>& eos, double g, double y, double eta, double e) {
+    const double j = 1.0 - eta;
+    const double rho = eos.density0() / j;
+    const double p = eos.hugoniot_pressure(j) + eos.gruneisen() * rho * (e - eos.hugoniot_energy(j));
+    const double dev = std::min(-4.0 / 3.0 * g * std::log(j), 2.0 / 3.0 * y);
+    return p + dev;
+}
+
+// Bisection on the shock speed U for a jump from state (sigma0, eta0, e0) with particle-velocity
+// jump du: sigma = sigma0 + rho0 U du, eta = eta0 + du / U, e = e0 + (sigma + sigma0)(eta - eta0) / (2 rho0).
+inline double solve_shock(const gimlet::eos::mie_gruneisen<>& eos, double g, double y, double sigma0, double eta0,
+                          double e0, double du) {
+    const double rho0 = eos.density0();
+    auto residual = [&](double u) {
+        const double sigma = sigma0 + rho0 * u * du;
+        const double eta = eta0 + du / u;
+        const double e = e0 + 0.5 * (sigma + sigma0) * (eta - eta0) / rho0;
+        return sigma - model_sigma(eos, g, y, eta, e);
+    };
+    double lo = 1.05 * du / (1.0 / eos.slope() - eta0), hi = 1e5;  // eta below the EOS singularity
+    if (residual(lo) * residual(hi) > 0) throw std::runtime_error("Rankine-Hugoniot: no bracket");
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (residual(lo) * residual(mid) <= 0 ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// The state behind the wave(s) of a symmetric impact at +-v (particle-velocity jump v).
+inline hugoniot_state rankine_hugoniot(const material& m, double v) {
+    const auto& eos = m.eos;
+    const double g = m.strength.shear_modulus(), y = m.strength.yield_stress(), rho0 = eos.density0();
+    hugoniot_state out;
+    // Hugoniot elastic limit: the elastic jump that just reaches the yield surface.
+    const double eta_hel = 1.0 - std::exp(-y / (2.0 * g));
+    double sigma_hel = 0, e_hel = 0;
+    for (int i = 0; i < 50; ++i) {  // e_hel = sigma_hel eta_hel / (2 rho0), fixed point
+        sigma_hel = model_sigma(eos, g, y, eta_hel, e_hel);
+        e_hel = 0.5 * sigma_hel * eta_hel / rho0;
+    }
+    const double u_pre = std::sqrt(sigma_hel / (rho0 * eta_hel));  // precursor speed
+    const double v_hel = u_pre * eta_hel;
+    const double u_single = solve_shock(eos, g, y, 0, 0, 0, v);
+    if (v <= v_hel || u_single >= u_pre) {
+        out.shock_speed = u_single;
+        out.sigma_yy = rho0 * u_single * v;
+    } else {
+        out.two_wave = true;
+        out.precursor_sigma = sigma_hel;
+        out.precursor_speed = u_pre;
+        out.precursor_velocity = v_hel;
+        // Lagrangian plastic-wave speed relative to the precursor state; the material ahead of it
+        // moves at v_hel relative to the unshocked slab, so relative speed = U_L (1 - eta_hel).
+        const double u_l = solve_shock(eos, g, y, sigma_hel, eta_hel, e_hel, v - v_hel);
+        out.sigma_yy = sigma_hel + rho0 * u_l * (v - v_hel);
+        out.shock_speed = u_l * (1.0 - eta_hel);
+    }
+    // P behind the shock: the yielded deviator is 2Y/3 (standard form; the viscosity is zero
+    // in a steady plateau).
+    out.pressure = out.sigma_yy - 2.0 / 3.0 * y;
+    return out;
+}
+
+// ---- the scene and the measurements --------------------------------------------------------
+
+inline solver make_solver(const settings& s) {
+    gimlet::require(std::isfinite(s.velocity) && s.velocity > 0 && s.velocity <= 1000, "velocity (m/s)", s.velocity,
+                    "(0, 1000]");
+    gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 1e-3, "cell size (m)", s.cell, "(0, 1e-3]");
+    const double width = 4 * s.cell;  // periodic strip, the uGIMP stencil wide
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector(0.0, -s.length - 10 * s.cell);
+    gs.upper = S::vector(width, s.length + 10 * s.cell);
+    gs.cell = s.cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
+    gimlet::scene::scene<S, material> scene(gs);
+    const auto hmx = gimlet::materials::make_hmx();
+    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, s.length)), hmx,
+                   S::vector(0.0, -s.velocity), 2, "upper slab");
+    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, -s.length), S::vector(width, 0.0)), hmx,
+                   S::vector(0.0, s.velocity), 2, "lower slab");
+    gimlet::solver_options<S> opt;
+    opt.scheme = s.scheme;
+    opt.threads = s.threads;
+    return solver(scene, opt);
+}
+
+struct result {
+    hugoniot_state rh;              // what the jump conditions predict
+    double plateau_sigma_yy = 0;    // Pa, compression positive
+    double plateau_pressure = 0;    // Pa
+    double shock_speed = 0;         // m/s, relative to the material ahead of it
+    double energy_error = 0;        // (E - E0) / E0, E = kinetic + internal (incl. heat)
+    double max_temperature = 0;     // K
+    double plateau_temperature = 0; // K
+    double min_det_f = 1;
+    bool all_finite = true;
+    std::vector<double> times, fronts;  // (s, m): the plastic front in the upper slab
+};
+
+// Runs the scene to s.end_time. The plateau is the mean over the upper slab between 10 cells
+// from the interface and half-way to the plastic front at the end; the front is where
+// sigma_yy first exceeds the mid-point between the precursor (0 for a single wave) and the
+// predicted plateau; its speed is a least-squares fit over the second half of the run, plus
+// the velocity of the material ahead of it.
+inline result run(const settings& s) {
+    solver sol = make_solver(s);
+    result r;
+    r.rh = rankine_hugoniot(sol.materials()[0], s.velocity);
+    const double e0 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
+    const double threshold = 0.5 * (r.rh.precursor_sigma + r.rh.sigma_yy);
+    auto sigma_yy = [](const auto& p) { return -p.template get<gimlet::fields::stress>()(1, 1); };
+    auto upper = [](const auto& p) { return p.template get<gimlet::fields::body>() == 0u; };
+    const int samples = 20;
+    for (int k = 1; k <= samples; ++k) {
+        const double t = s.end_time * k / samples;
+        sol.run_until(t);
+        if (2 * k >= samples) {
+            const auto prof = gimlet::diagnostics::profile(sol, 1, sigma_yy, upper);
+            r.times.push_back(t);
+            r.fronts.push_back(gimlet::diagnostics::front_position(prof, threshold, 0.0, s.length));
+        }
+    }
+    const auto& ps = sol.particles();
+    const double front = r.fronts.back();
+    const double lo = 10 * s.cell, hi = 0.5 * front;
+    double n = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        const auto p = ps[i];
+        const double y = p.get<gimlet::fields::position>()[1];
+        const double j = p.get<gimlet::fields::deformation_gradient>().determinant();
+        r.min_det_f = std::min(r.min_det_f, j);
+        r.all_finite = r.all_finite && p.get<gimlet::fields::stress>().allFinite() && std::isfinite(j);
+        r.max_temperature = std::max(r.max_temperature, double(p.get<gimlet::fields::temperature>()));
+        if (upper(p) && y >= lo && y <= hi) {
+            r.plateau_sigma_yy += sigma_yy(p);
+            r.plateau_pressure += gimlet::mean_pressure(p);
+            r.plateau_temperature += p.get<gimlet::fields::temperature>();
+            n += 1;
+        }
+    }
+    r.plateau_sigma_yy /= n;
+    r.plateau_pressure /= n;
+    r.plateau_temperature /= n;
+    // Least-squares slope of front(t): the lab-frame speed of the plastic front.
+    double st = 0, sf = 0, stt = 0, stf = 0;
+    const double m = double(r.times.size());
+    for (std::size_t i = 0; i < r.times.size(); ++i) {
+        st += r.times[i], sf += r.fronts[i], stt += r.times[i] * r.times[i], stf += r.times[i] * r.fronts[i];
+    }
+    const double lab = (m * stf - st * sf) / (m * stt - st * st);
+    // The material ahead of the plastic front moves at -(v - v_precursor) towards it.
+    r.shock_speed = lab + (s.velocity - r.rh.precursor_velocity);
+    const double e1 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
+    r.energy_error = (e1 - e0) / e0;
+    return r;
+}
+
+}  // namespace impact_1d

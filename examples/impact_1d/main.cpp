@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// Two HMX slabs in uniaxial strain hit each other symmetrically (the reference paper's material:
+// von Mises plasticity, Mie-Grueneisen EOS, artificial viscosity, shock and plastic heating).
+// Measures the shocked plateau and the shock speed and prints them next to the elastic-plastic
+// Rankine-Hugoniot state; writes OUTPUT/summary.csv and OUTPUT/profile.csv.
+//
+//   impact_1d [--velocity 300] [--cell 0.1] [--end-us 3] [--scheme usf|musl|usl]
+//             [--threads 0] [--output results/impact_1d]
+//
+// The default update scheme here is USF: in this shock it keeps total energy to ~0.1 %, while
+// MUSL (the library default) loses about 1.3 % over 3 us at 300 m/s by projecting away the
+// post-shock velocity noise (see docs/equations.md).
+#include "common/cli.hpp"
+#include "impact_1d/impact_1d.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+int main(int argc, char** argv) try {
+    example::cli args(argc, argv,
+                      "usage: impact_1d [--velocity V_m_s] [--cell H_mm] [--end-us T] [--scheme usf|musl|usl] "
+                      "[--threads N] [--output DIR]");
+    impact_1d::settings s;
+    s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
+    s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
+    s.end_time = 1e-6 * args.real("end-us", 3.0, 0.0, 5.0);
+    s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
+    const std::string scheme = args.choice("scheme", "usf", {"usf", "musl", "usl"});
+    s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
+             : scheme == "usl"  ? gimlet::update_scheme::usl
+                                : gimlet::update_scheme::usf;
+    const auto out = args.directory("output", "results/impact_1d");
+    args.finish();
+
+    const auto r = impact_1d::run(s);
+
+    std::ofstream csv(out / "summary.csv");
+    csv << "velocity_m_s,plateau_pressure_Pa,plateau_stress_yy_Pa,shock_speed_m_s,energy_error_rel,"
+           "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
+           "plateau_temperature_K,max_temperature_K,cell_mm,scheme\n";
+    csv.precision(10);
+    csv << s.velocity << ',' << r.plateau_pressure << ',' << r.plateau_sigma_yy << ',' << r.shock_speed << ','
+        << r.energy_error << ',' << r.rh.pressure << ',' << r.rh.sigma_yy << ',' << r.rh.shock_speed << ','
+        << 2740.0 + 2.6 * s.velocity << ',' << (r.rh.two_wave ? 1 : 0) << ',' << r.plateau_temperature << ','
+        << r.max_temperature << ',' << s.cell * 1e3 << ',' << scheme << '\n';
+
+    std::printf("impact_1d: HMX slabs at +-%.0f m/s, cell %.3f mm, %s, to %.2f us\n", s.velocity, s.cell * 1e3,
+                scheme.c_str(), s.end_time * 1e6);
+    std::printf("  %-28s %14s %14s %9s\n", "", "simulation", "Rankine-Hug.", "diff");
+    std::printf("  %-28s %14.4e %14.4e %+8.2f%%\n", "plateau stress sigma_yy (Pa)", r.plateau_sigma_yy, r.rh.sigma_yy,
+                100 * (r.plateau_sigma_yy / r.rh.sigma_yy - 1));
+    std::printf("  %-28s %14.4e %14.4e %+8.2f%%\n", "plateau pressure (Pa)", r.plateau_pressure, r.rh.pressure,
+                100 * (r.plateau_pressure / r.rh.pressure - 1));
+    std::printf("  %-28s %14.1f %14.1f %+8.2f%%\n", r.rh.two_wave ? "plastic wave speed (m/s)" : "shock speed (m/s)",
+                r.shock_speed, r.rh.shock_speed, 100 * (r.shock_speed / r.rh.shock_speed - 1));
+    std::printf("  hydrodynamic c0 + s v = %.1f m/s%s\n", 2740.0 + 2.6 * s.velocity,
+                r.rh.two_wave ? "; elastic precursor ahead (two-wave structure)" : "");
+    std::printf("  total energy error %.2e, plateau temperature %.1f K, max %.1f K\n", r.energy_error,
+                r.plateau_temperature, r.max_temperature);
+    std::printf("  summary: %s\n", (out / "summary.csv").string().c_str());
+    return 0;
+} catch (const std::exception& e) {
+    std::cerr << "impact_1d: " << e.what() << '\n';
+    return 1;
+}
