@@ -4,8 +4,8 @@
 # and build the release preset (only what the flagship needs), run it.
 set -euo pipefail
 
-FLAGSHIP=sulsky_disks
-FLAGSHIP_ARGS=(--output results/sulsky_disks)
+FLAGSHIP=impact_1d
+FLAGSHIP_ARGS=(--velocity 300 --output results/impact_1d)
 PRESET=release
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
