@@ -41,14 +41,6 @@ using S = gimlet::space<2>;
 using shapes = std::tuple<gimlet::shape::linear, gimlet::shape::ugimp, gimlet::shape::cpgimp,
                           gimlet::shape::bspline_quadratic, gimlet::shape::bspline_cubic>;
 
-template <class Sh>
-const char* shape_name() {
-    if constexpr (std::is_same_v<Sh, gimlet::shape::linear>) return "linear";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::ugimp>) return "ugimp";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::cpgimp>) return "cpgimp";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::bspline_quadratic>) return "bspline_quadratic";
-    else return "bspline_cubic";
-}
 
 constexpr double pi = 3.141592653589793;
 
@@ -149,7 +141,7 @@ TEMPLATE_LIST_TEST_CASE("elastic bar, fixed-free: first-mode period and energy",
     const double error = r.period / r.exact - 1;
     std::printf("bar %-18s T = %.6f s (exact 4L/c = %.6f s), error %+.4f %% (%zu crossings); "
                 "max |dE|/E0: KE+IE %.2e (omega dt/2 = %.2e), time-centred %.2e\n",
-                shape_name<TestType>(), r.period, r.exact, 100 * error, r.crossings, r.energy_error,
+                TestType::name, r.period, r.exact, 100 * error, r.crossings, r.energy_error,
                 r.omega_dt / 2, r.centred_error);
     // Three periods give six zero crossings of V (at T/4 + k T/2).
     REQUIRE(r.crossings >= 5);

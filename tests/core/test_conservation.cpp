@@ -60,7 +60,7 @@ summary run_and_summarise(gimlet::update_scheme scheme) {
         r.min_kinetic = std::min(r.min_kinetic, s.kinetic / first.kinetic);
     }
     std::printf("two disks, %-30s %s: |dm|/m %.1e  |dp|/|p_body| %.1e  max|dE|/E0 %.3f  max gain %.3f\n",
-                typeid(Shape).name(), scheme == gimlet::update_scheme::musl ? "MUSL" : scheme == gimlet::update_scheme::usl ? "USL " : "USF ",
+                Shape::name, scheme == gimlet::update_scheme::musl ? "MUSL" : scheme == gimlet::update_scheme::usl ? "USL " : "USF ",
                 r.dm, r.dp, r.de, r.gain);
     // The collision really happened: most kinetic energy became strain energy mid-impact.
     CHECK(r.min_kinetic < 0.2);

@@ -57,14 +57,6 @@ using extra_fields = gimlet::field_list<gimlet::fields::external_acceleration, r
 template <class Sh>
 using mms_solver = gimlet::solver<S, Sh, gimlet::elastic_material, gimlet::contact::single_field, extra_fields>;
 
-template <class Sh>
-const char* shape_name() {
-    if constexpr (std::is_same_v<Sh, gimlet::shape::linear>) return "linear";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::ugimp>) return "ugimp";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::cpgimp>) return "cpgimp";
-    else if constexpr (std::is_same_v<Sh, gimlet::shape::bspline_quadratic>) return "bspline_quadratic";
-    else return "bspline_cubic";
-}
 
 constexpr double pi = 3.141592653589793;
 constexpr double length = 1.0;                 // L_x, one wavelength (m)
@@ -166,10 +158,10 @@ study convergence(double amplitude, const char* label) {
         s.error[i] = run<Shape>(resolutions[i], amplitude);
         const int cells = resolutions[i];
         if (i == 0) {
-            std::printf("%-6s %-18s %5d %11.3e %7s %11.3e %7s %9.2e\n", label, shape_name<Shape>(), cells,
+            std::printf("%-6s %-18s %5d %11.3e %7s %11.3e %7s %9.2e\n", label, Shape::name, cells,
                         s.error[i].max, "-", s.error[i].rms, "-", amplitude * cells / length);
         } else {
-            std::printf("%-6s %-18s %5d %11.3e %7.2f %11.3e %7.2f %9.2e\n", label, shape_name<Shape>(), cells,
+            std::printf("%-6s %-18s %5d %11.3e %7.2f %11.3e %7.2f %9.2e\n", label, Shape::name, cells,
                         s.error[i].max, s.order_max(i), s.error[i].rms, s.order_rms(i),
                         amplitude * cells / length);
         }

@@ -17,6 +17,7 @@ namespace gimlet::shape {
 /// With t = x - floor(x) in [0, 1) and u = 1 - t the four live nodes sit at distances
 /// 1 + t, t, u, 1 + u; the inner two share one cubic (in t and in u), the outer two another.
 struct bspline_cubic {
+    static constexpr const char* name = "bspline_cubic";  ///< for output and tables
     static constexpr int stencil = 4;
     using required_fields = gimlet::field_list<>;
 

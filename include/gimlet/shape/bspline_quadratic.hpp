@@ -17,6 +17,7 @@ namespace gimlet::shape {
 /// With f = x - (nearest node) in [-1/2, 1/2) the three live nodes take the closed forms
 /// below (no per-node branch); each is N at that node's distance, 1 + f, f and 1 - f.
 struct bspline_quadratic {
+    static constexpr const char* name = "bspline_quadratic";  ///< for output and tables
     static constexpr int stencil = 3;
     using required_fields = gimlet::field_list<>;
 

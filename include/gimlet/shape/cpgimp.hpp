@@ -14,6 +14,7 @@ namespace gimlet::shape {
 /// Wallstedt & Guilkey 2008; PHYSICS.md section 2). The box stays axis-aligned: per axis,
 /// `l_d = l0_d |F_dd|`, the stretch along that axis; shear is not followed (that needs CPDI).
 struct cpgimp {
+    static constexpr const char* name = "cpgimp";  ///< for output and tables
     static constexpr int stencil = detail::gimp_stencil;
     using required_fields = gimlet::field_list<gimlet::fields::domain_half_width>;
 

@@ -15,6 +15,7 @@ namespace gimlet::shape {
 /// On a node the gradient is one-sided (from the right), the choice `first = floor(x)` implies;
 /// it keeps sum(dw) = 0 and sum(dw x_i) = 1 exact there too.
 struct linear {
+    static constexpr const char* name = "linear";  ///< for output and tables
     static constexpr int stencil = 2;
     using required_fields = gimlet::field_list<>;
 

@@ -20,6 +20,7 @@ namespace gimlet::shape {
 /// With l_p = h/4 (2x2 particles per cell) it is the reference paper's Φ (eq-mpm-shape, see
 /// paper_phi). The 1-D function and its branches are in detail::gimp_kernel.
 struct ugimp {
+    static constexpr const char* name = "ugimp";  ///< for output and tables
     static constexpr int stencil = detail::gimp_stencil;
     using required_fields = gimlet::field_list<gimlet::fields::domain_half_width>;
 
