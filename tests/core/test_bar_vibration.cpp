@@ -31,7 +31,6 @@
 #include <cstddef>
 #include <cstdio>
 #include <tuple>
-#include <type_traits>
 #include <vector>
 
 namespace {

@@ -40,7 +40,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <type_traits>
 
 namespace {
 
