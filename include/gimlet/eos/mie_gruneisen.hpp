@@ -91,9 +91,11 @@ public:
 
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
     /// de = -P dV along an isentrope, for the time step's wave speed (never negative).
+    /// The compression is capped at the singularity margin (where pressure() stops the run),
+    /// so the modulus is finite for any state.
     template <class Real, class P>
     [[nodiscard]] Real bulk_modulus(const point_state<Real>& st, const P& p) const {
-        const double j = double(st.J);
+        const double j = std::max(double(st.J), 1.0 - (1.0 - margin_) / s_);
         const double eta = 1.0 - j;
         const double grho = gamma_ * double(st.density);
         const double excess = energy_excess(j, p);
