@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The reference paper's distance-switched contact.
+
+#include "gimlet/contact/bardenhagen.hpp"
+
+namespace gimlet::contact {
+
+/// The reference paper's improved criterion (its section 2.2, equation R_i^pq <= L/2;
+/// PHYSICS.md section 3): the Bardenhagen et al. (2000) correction is applied at a node only
+/// where the two bodies are close there, and only while they approach (the implied normal force
+/// is compressive; when it would turn tensile the correction is dropped and the bodies separate).
+///
+/// **How the gap is measured.** At node i, each body's outward normal n^b comes from its mass
+/// gradient. For each body, the particle centres that map to node i are projected on n^b and the
+/// furthest is kept (node_view::reach). With the two bodies' normals opposite, the distance
+/// between the facing particle centres along the normal is gap = -(reach^A + reach^B). Contact
+/// acts where gap <= h/2: touching bodies with 2x2 particles per cell have facing centres
+/// exactly h/2 apart, so contact starts when the particle domains meet, not when the bodies
+/// first share a node (up to two cells earlier). The paper prints the criterion with max/min
+/// signs that do not make a distance; this is its meaning.
+class distance {
+public:
+    static constexpr bool multi_field = true;
+    using required_fields = field_list<>;
+
+    /// \param friction Coulomb coefficient mu >= 0; \param gap_fraction the switching distance
+    /// in cells (the paper's 1/2), in (0, 2].
+    explicit distance(double friction = 0.0, double gap_fraction = 0.5) : mu_(friction), gap_(gap_fraction) {
+        require(!std::isnan(friction) && friction >= 0.0, "contact friction coefficient mu", friction, ">= 0");
+        require(gap_fraction > 0.0 && gap_fraction <= 2.0, "contact switching distance (cells)", gap_fraction,
+                "(0, 2]");
+    }
+
+    template <Space S>
+    void resolve(node_view<S>& node) const {
+        using real = typename S::real;
+        // A small tolerance: touching bodies sit exactly at h/2 and must count as in contact.
+        const real limit = real(gap_) * node.cell * (real(1) + real(1e-9));
+        detail::correct(node, real(mu_), [&](std::size_t a, std::size_t b) {
+            return -(node.reach[a] + node.reach[b]) <= limit;
+        });
+    }
+
+    [[nodiscard]] double friction() const noexcept { return mu_; }
+    [[nodiscard]] double switching_distance() const noexcept { return gap_; }
+
+private:
+    double mu_, gap_;
+};
+
+static_assert(Contact<distance>);
+
+}  // namespace gimlet::contact
