@@ -3,7 +3,10 @@
 /// \file
 /// Everything gimlet offers, in one include.
 
+#include "gimlet/contact/bardenhagen.hpp"
 #include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/distance.hpp"
+#include "gimlet/contact/node.hpp"
 #include "gimlet/contact/single_field.hpp"
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/elastic_moduli.hpp"

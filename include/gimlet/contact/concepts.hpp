@@ -3,6 +3,7 @@
 /// \file
 /// The contact contract.
 
+#include "gimlet/contact/node.hpp"
 #include "gimlet/core/fields.hpp"
 
 #include <concepts>
@@ -14,12 +15,19 @@ namespace gimlet::contact {
 /// - `multi_field`: whether the grid carries one velocity field per body (true) or one shared
 ///   field (false: bodies stick where they meet, "no contact algorithm"). A single-field
 ///   policy makes the solver allocate and map exactly one field.
-/// - `fields`: field_list of the per-particle state it needs.
+/// - `required_fields`: field_list of the per-particle state it needs.
+/// - multi-field policies: `resolve(node)`, called at every node where two or more bodies have
+///   mass, after the grid momentum update (and again after MUSL's re-mapping); it corrects the
+///   bodies' nodal momenta in `node.momentum` (contact::node_view). A correction that moves
+///   momentum between bodies without creating any conserves total momentum.
 template <class C>
 concept Contact = requires {
     { C::multi_field } -> std::convertible_to<bool>;
     typename C::required_fields;
     requires FieldList<typename C::required_fields>;
-};
+} && (!C::multi_field || requires(const C& c, node_view<space<2, double>>& n2, node_view<space<3, double>>& n3) {
+    c.resolve(n2);
+    c.resolve(n3);
+});
 
 }  // namespace gimlet::contact

@@ -21,7 +21,7 @@ struct node_view {
     const std::uint32_t* body = nullptr;  ///< their body ids
     const real* mass = nullptr;       ///< m_i^b
     vector* momentum = nullptr;       ///< (mv)_i^b, in/out: the policy corrects it
-    const vector* normal = nullptr;   ///< outward unit normal of each body: -grad m^b / |grad m^b|
+    const vector* normal = nullptr;   ///< outward unit normal of each body: sum_p m_p G_ip, normalised
     /// Furthest particle centre of each body that maps to this node, measured from the node along
     /// that body's outward normal: max_p (x_p - x_i) . n^b. For two bodies A, B with
     /// n^B = -n^A, the gap between their facing particle centres is -(reach^A + reach^B).

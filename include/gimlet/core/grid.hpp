@@ -82,12 +82,23 @@ public:
         }
         size_ = count;
         inv_cell_ = real(1) / spec.cell;
-        mass.assign(size_, real(0));
-        momentum.assign(size_, vector::Zero());
-        force.assign(size_, vector::Zero());
-        velocity.assign(size_, vector::Zero());
-        velocity_old.assign(size_, vector::Zero());
+        set_field_count(1);
     }
+
+    /// Number of velocity fields the grid carries (1, or one per body for multi-field contact).
+    /// Field f of node n is entry f * size() + n of every nodal array.
+    void set_field_count(std::size_t fields) {
+        fields_ = fields;
+        const std::size_t total = fields_ * size_;
+        mass.assign(total, real(0));
+        momentum.assign(total, vector::Zero());
+        force.assign(total, vector::Zero());
+        velocity.assign(total, vector::Zero());
+        velocity_old.assign(total, vector::Zero());
+    }
+    [[nodiscard]] std::size_t field_count() const noexcept { return fields_; }
+    /// Entries of every nodal array: field_count() * size().
+    [[nodiscard]] std::size_t entries() const noexcept { return fields_ * size_; }
 
     [[nodiscard]] const grid_spec<S>& spec() const noexcept { return spec_; }
     [[nodiscard]] real cell() const noexcept { return spec_.cell; }
@@ -137,19 +148,20 @@ public:
         std::fill(force.begin(), force.end(), vector::Zero());
     }
 
-    /// Impose the wall conditions on a nodal velocity field: on a slip or fixed axis, nodes at
+    /// Impose the wall conditions on nodal velocities (every field): on a slip or fixed axis, nodes at
     /// and beyond the boundary (k <= 0 or k >= N) lose the normal (slip) or every (fixed)
     /// component. Ghost nodes beyond a wall belong to the rigid wall.
     void apply_walls(std::vector<vector>& v) const {
         for (int d = 0; d < dim; ++d) {
             const boundary b = spec_.bc[d];
             if (b != boundary::slip && b != boundary::fixed) continue;
-            for (std::size_t n = 0; n < size_; ++n) {
+            for (std::size_t e = 0; e < v.size(); ++e) {
+                const std::size_t n = e % size_;
                 const int k = node_of(d, static_cast<int>((n / static_cast<std::size_t>(stride_[d])) %
                                                           static_cast<std::size_t>(nodes_[d])));
                 if (k > 0 && k < cells_[d]) continue;
-                if (b == boundary::slip) v[n][d] = real(0);
-                else v[n].setZero();
+                if (b == boundary::slip) v[e][d] = real(0);
+                else v[e].setZero();
             }
         }
     }
@@ -171,6 +183,7 @@ public:
         return true;
     }
 
+    // Nodal fields, field-major (see set_field_count).
     std::vector<real> mass;            ///< m_i
     std::vector<vector> momentum;      ///< (mv)_i
     std::vector<vector> force;         ///< f_i
@@ -183,6 +196,7 @@ private:
     std::array<int, dim> cells_{}, nodes_{}, offset_{}, stride_{};
     std::array<bool, dim> periodic_{};
     std::size_t size_ = 0;
+    std::size_t fields_ = 1;
     real inv_cell_ = 1;
 };
 

@@ -4,6 +4,7 @@
 /// The explicit GIMP solver: policies composed at compile time into one step.
 
 #include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/node.hpp"
 #include "gimlet/contact/single_field.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/detail/stencil.hpp"
@@ -91,12 +92,13 @@ public:
     using store_type = particle_store<S, particle_fields>;
     static constexpr int dim = S::dim;
 
-    static_assert(!C::multi_field, "multi-field contact needs the contact policies of gimlet/contact/");
+    static constexpr bool multi_field = C::multi_field;
 
     /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
     /// the grid, overlapping bodies or a body with no particles.
-    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {})
-        : options_(options), grid_(sc.grid(), Sh::stencil) {
+    /// \param contact the contact policy's parameters (e.g. friction).
+    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{})
+        : options_(options), grid_(sc.grid(), Sh::stencil), contact_(contact) {
         options_.validate();
         require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
         for (const auto& b : sc.bodies()) materials_.push_back(b.material);
@@ -104,6 +106,12 @@ public:
         real heaviest = 0;
         for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
         mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+        if constexpr (multi_field) {
+            // One velocity field per body (Bardenhagen et al. 2000); a single-field policy keeps one.
+            grid_.set_field_count(materials_.size());
+            mass_gradient_.assign(grid_.entries(), vector::Zero());
+            reach_.assign(grid_.entries(), real(0));
+        }
     }
 
     /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
@@ -168,6 +176,13 @@ private:
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
+
+    // Where particle i's velocity field starts in the nodal arrays: its body's field with
+    // multi-field contact, the only field otherwise (a compile-time zero).
+    [[nodiscard]] std::size_t field_base(std::size_t i) const noexcept {
+        if constexpr (multi_field) return std::size_t(particles_.template column<fields::body>()[i]) * grid_.size();
+        else return (void)i, std::size_t(0);
+    }
 
     [[nodiscard]] int threads() const noexcept {
         return options_.threads > 0 ? options_.threads : detail::default_threads();
@@ -243,6 +258,8 @@ private:
         compute_stencils();
         grid_.clear();
         map_mass_momentum();
+        dt_ = dt;
+        if constexpr (multi_field) compute_reach();
         nodal_velocity(grid_.velocity_old);
         if (options_.scheme == update_scheme::usf) {
             grid_.velocity = grid_.velocity_old;
@@ -280,12 +297,18 @@ private:
     void map_mass_momentum() {
         const auto& m = particles_.template column<fields::mass>();
         const auto& v = particles_.template column<fields::velocity>();
+        if constexpr (multi_field) std::fill(mass_gradient_.begin(), mass_gradient_.end(), vector::Zero());
         for (std::size_t i = 0; i < particles_.size(); ++i) {
             const real mp = m[i];
             const vector mv = mp * v[i];
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                grid_.mass[node] += w * mp;
-                grid_.momentum[node] += w * mv;
+            const std::size_t base = field_base(i);
+            stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
+                grid_.mass[base + node] += w * mp;
+                grid_.momentum[base + node] += w * mv;
+                // G is the gradient with respect to the particle position, so sum m_p G_ip points
+                // out of the body (PHYSICS.md section 3; Bardenhagen et al. 2000, eq. 16).
+                if constexpr (multi_field) mass_gradient_[base + node] += mp * g;
+                else (void)g;
             });
         }
     }
@@ -302,16 +325,17 @@ private:
             if constexpr (store_type::template has<fields::external_acceleration>)
                 mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
             const bool loaded = gravity || store_type::template has<fields::external_acceleration>;
+            const std::size_t base = field_base(i);
             stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
-                grid_.force[node] -= vs * g;
-                if (loaded) grid_.force[node] += w * mb;
+                grid_.force[base + node] -= vs * g;
+                if (loaded) grid_.force[base + node] += w * mb;
             });
         }
     }
 
     // v_i = (mv)_i / m_i where m_i is above the cut-off, else 0 (PHYSICS.md section 1, step 2).
     void nodal_velocity(std::vector<vector>& out) {
-        const auto n = static_cast<std::ptrdiff_t>(grid_.size());
+        const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
@@ -321,7 +345,7 @@ private:
 
     // (mv)_i += dt f_i, then boundary conditions (PHYSICS.md section 1, step 2).
     void update_grid_momentum(real dt) {
-        const auto n = static_cast<std::ptrdiff_t>(grid_.size());
+        const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
@@ -330,6 +354,7 @@ private:
                 grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
         }
         grid_.apply_walls(grid_.velocity);
+        if constexpr (multi_field) resolve_contact();
     }
 
     // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
@@ -343,9 +368,10 @@ private:
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             vector v_pic = vector::Zero(), dv = vector::Zero();
+            const std::size_t base = field_base(i);
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                v_pic += w * grid_.velocity[node];
-                dv += w * (grid_.velocity[node] - grid_.velocity_old[node]);
+                v_pic += w * grid_.velocity[base + node];
+                dv += w * (grid_.velocity[base + node] - grid_.velocity_old[base + node]);
             });
             x[i] += dt * v_pic;
             v[i] = (real(1) - alpha) * (v[i] + dv) + alpha * v_pic;
@@ -359,10 +385,12 @@ private:
         const auto& v = particles_.template column<fields::velocity>();
         for (std::size_t i = 0; i < particles_.size(); ++i) {
             const vector mv = m[i] * v[i];
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[node] += w * mv; });
+            const std::size_t base = field_base(i);
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
         }
         nodal_velocity(grid_.velocity);
         grid_.apply_walls(grid_.velocity);
+        if constexpr (multi_field) resolve_contact();
     }
 
     // L_p = sum v_i (x) G_ip; F update; then the constitutive policies
@@ -386,8 +414,56 @@ private:
     void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
         auto p = particles_[i];
         matrix L = matrix::Zero();
-        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[node] * g.transpose(); });
+        const std::size_t base = field_base(i);
+        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[base + node] * g.transpose(); });
         gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, steps_, double(time_));
+    }
+
+    // ---- multi-field contact ------------------------------------------------------------
+
+    // Each body's furthest particle centre along its own outward normal at every node its
+    // particles map to (contact::node_view::reach), from the positions at the start of the step.
+    void compute_reach() {
+        std::fill(reach_.begin(), reach_.end(), -std::numeric_limits<real>::infinity());
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+            const std::size_t base = field_base(i);
+            stencils_[i].for_each_offset(grid_.cell(), [&](std::size_t node, const vector& r) {
+                const vector& grad = mass_gradient_[base + node];
+                const real len = grad.norm();
+                if (!(len > real(0))) return;
+                reach_[base + node] = std::max(reach_[base + node], r.dot(grad) / len);
+            });
+        }
+    }
+
+    // At every node shared by two or more bodies, let the contact policy correct the bodies'
+    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls.
+    void resolve_contact() {
+        const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
+        for (std::size_t node = 0; node < nodes; ++node) {
+            scratch_.clear();
+            for (std::size_t f = 0; f < fields_n; ++f)
+                if (grid_.mass[f * nodes + node] > mass_cutoff_) scratch_.push_back(f);
+            if (scratch_.size() < 2) continue;
+            const std::size_t k = scratch_.size();
+            ids_.resize(k), m_.resize(k), p_.resize(k), n_.resize(k), r_.resize(k);
+            for (std::size_t j = 0; j < k; ++j) {
+                const std::size_t e = scratch_[j] * nodes + node;
+                ids_[j] = static_cast<std::uint32_t>(scratch_[j]);
+                m_[j] = grid_.mass[e];
+                p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
+                const real len = mass_gradient_[e].norm();
+                n_[j] = len > real(0) ? vector(mass_gradient_[e] / len) : vector::Zero();
+                r_[j] = reach_[e];
+            }
+            contact::node_view<S> view{k, ids_.data(), m_.data(), p_.data(), n_.data(), r_.data(), grid_.cell(), dt_};
+            contact_.resolve(view);
+            for (std::size_t j = 0; j < k; ++j) {
+                const std::size_t e = scratch_[j] * nodes + node;
+                grid_.velocity[e] = p_[j] / m_[j];
+            }
+        }
+        grid_.apply_walls(grid_.velocity);
     }
 
     // Stop on non-finite values, inverted particles or particles off the grid; report the
@@ -438,6 +514,16 @@ private:
     std::vector<stencil_type> stencils_;
     real mass_cutoff_ = 0;
     bool state_touched_ = false;
+    C contact_;
+    real dt_ = 0;
+    // Multi-field contact only (empty otherwise): per field and node, the mass gradient and the
+    // reach, plus scratch space for one node's bodies.
+    std::vector<vector> mass_gradient_;
+    std::vector<real> reach_;
+    std::vector<std::size_t> scratch_;
+    std::vector<std::uint32_t> ids_;
+    std::vector<real> m_, r_;
+    std::vector<vector> p_, n_;
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };

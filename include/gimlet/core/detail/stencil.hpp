@@ -23,6 +23,7 @@ struct stencil {
     std::array<std::array<int, W>, dim> offset;  ///< storage offset of each node along each axis
     std::array<std::array<real, W>, dim> w;      ///< 1-D weights
     std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
+    std::array<real, dim> local;                 ///< particle position from the first node (cells)
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>
@@ -31,10 +32,31 @@ struct stencil {
             const real xc = (x[d] - g.spec().lower[d]) * g.inv_cell();
             int first = 0;
             Shape::weights(xc, half_width[d], first, w[d].data(), dw[d].data());
+            local[d] = xc - real(first);
             for (int a = 0; a < W; ++a) {
                 offset[d][a] = g.axis_offset(d, first + a);
                 dw[d][a] *= g.inv_cell();
             }
+        }
+    }
+
+    /// Call f(node, r) for every node of the stencil with a non-zero weight, where r = x_p - x_i
+    /// (m) is measured to that node (unwrapped across periodic seams).
+    template <class F>
+    void for_each_offset(real h, F&& f) const {
+        if constexpr (dim == 2) {
+            for (int b = 0; b < W; ++b)
+                for (int a = 0; a < W; ++a)
+                    if (w[0][a] * w[1][b] > real(0))
+                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b]),
+                          vector((local[0] - real(a)) * h, (local[1] - real(b)) * h));
+        } else {
+            for (int c = 0; c < W; ++c)
+                for (int b = 0; b < W; ++b)
+                    for (int a = 0; a < W; ++a)
+                        if (w[0][a] * w[1][b] * w[2][c] > real(0))
+                            f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]),
+                              vector((local[0] - real(a)) * h, (local[1] - real(b)) * h, (local[2] - real(c)) * h));
         }
     }
 
