@@ -180,3 +180,20 @@ TEST_CASE("a user policy with its own field runs in the solver", "[static][core]
     for (double h : sol.particles().column<user::heat>()) CHECK(h == 0.0);
     CHECK(sol.particles().column<user::heat>().size() == sol.particles().size());
 }
+
+TEST_CASE("a single-field scene allocates one grid field, a multi-field scene one per body", "[static][contact]") {
+    gimlet::grid_spec<S2> gs;
+    gs.upper = S2::vector(1.0, 0.6);
+    gs.cell = 0.1;
+    gimlet::scene::scene<S2, gimlet::elastic_material> sc(gs);
+    const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
+    sc.add_body(gimlet::scene::box<S2>(S2::vector(0.1, 0.1), S2::vector(0.4, 0.3)), mat, S2::vector::Zero());
+    sc.add_body(gimlet::scene::box<S2>(S2::vector(0.5, 0.1), S2::vector(0.9, 0.3)), mat, S2::vector::Zero());
+    sc.add_body(gimlet::scene::box<S2>(S2::vector(0.1, 0.4), S2::vector(0.9, 0.5)), mat, S2::vector::Zero());
+    const elastic_solver single(sc);
+    const gimlet::solver<S2, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen> multi(sc);
+    CHECK(single.background_grid().field_count() == 1);
+    CHECK(single.background_grid().mass.size() == single.background_grid().size());
+    CHECK(multi.background_grid().field_count() == 3);
+    CHECK(multi.background_grid().mass.size() == 3 * multi.background_grid().size());
+}
