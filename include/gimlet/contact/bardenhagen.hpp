@@ -20,18 +20,22 @@ namespace detail {
 /// change of body a, or zero if a is not approaching (PHYSICS.md section 3):
 /// approaching if (v_a - v_cm) . n > 0; then the normal relative velocity is removed and the
 /// tangential one reduced by at most mu times the normal change (mu = inf: no slip).
+/// With `constrained` the normal constraint is kept even if the body is separating (MUSL's
+/// re-mapping pass at a node the grid update engaged; see node_view::constrained).
 template <class Vector, class Real>
-[[nodiscard]] Vector coulomb_correction(const Vector& relative, const Vector& n, Real mu) {
+[[nodiscard]] Vector coulomb_correction(const Vector& relative, const Vector& n, Real mu, bool constrained,
+                                        bool& engaged) {
     const Real approach = relative.dot(n);
-    if (!(approach > Real(0))) return Vector::Zero();
+    if (!(approach > Real(0)) && !constrained) return Vector::Zero();
+    engaged = true;
     const Vector tangential = relative - approach * n;
     const Real slip = tangential.norm();
     Vector dv = -approach * n;
-    if (slip > Real(0)) dv -= std::min(slip, mu * approach) / slip * tangential;
+    if (slip > Real(0)) dv -= std::min(slip, mu * std::abs(approach)) / slip * tangential;
     return dv;
 }
 
-/// Apply the correction at a node. Two bodies share one normal, the average of their own
+/// Apply the correction at a node (and record in node.engaged whether it did). Two bodies share one normal, the average of their own
 /// (n = (n^A - n^B)/|n^A - n^B|), and exchange equal and opposite momenta, so momentum is
 /// conserved to round-off. With more bodies each is corrected against the centre of mass along
 /// its own normal (Bardenhagen et al. 2000, eq. 19). `engaged(a, b)` can veto a pair.
@@ -48,7 +52,8 @@ void correct(node_view<S>& node, typename S::real mu, Engaged engaged) {
         const real len = d.norm();
         if (!(len > real(0)) || !engaged(0, 1)) return;
         const vector n = d / len;
-        const vector dv = coulomb_correction(vector(node.momentum[0] / node.mass[0] - v_cm), n, mu);
+        const vector dv =
+            coulomb_correction(vector(node.momentum[0] / node.mass[0] - v_cm), n, mu, node.constrained, node.engaged);
         node.momentum[0] += node.mass[0] * dv;
         node.momentum[1] -= node.mass[0] * dv;
         return;
@@ -57,7 +62,8 @@ void correct(node_view<S>& node, typename S::real mu, Engaged engaged) {
         bool any = false;
         for (std::size_t o = 0; o < node.count; ++o) any = any || (o != b && engaged(b, o));
         if (!any) continue;
-        const vector dv = coulomb_correction(vector(node.momentum[b] / node.mass[b] - v_cm), node.normal[b], mu);
+        const vector dv = coulomb_correction(vector(node.momentum[b] / node.mass[b] - v_cm), node.normal[b], mu,
+                                             node.constrained, node.engaged);
         node.momentum[b] += node.mass[b] * dv;
     }
 }

@@ -28,6 +28,13 @@ struct node_view {
     const real* reach = nullptr;
     real cell = 0;                    ///< h
     real dt = 0;                      ///< time step
+    /// In: the node was engaged by this step's grid update and this is MUSL's re-mapping pass;
+    /// the policy must keep its normal constraint without re-testing whether the bodies approach
+    /// (the re-mapped velocities can look separating there, and dropping the constraint after
+    /// the forces were exchanged would release stress energy twice).
+    bool constrained = false;
+    /// Out: the policy set this if it corrected the momenta.
+    bool engaged = false;
 };
 
 }  // namespace gimlet::contact

@@ -264,6 +264,9 @@ private:
         if (options_.scheme == update_scheme::usf) {
             grid_.velocity = grid_.velocity_old;
             grid_.apply_walls(grid_.velocity);
+            // The stress sees the same contact as the momentum update, or it would strain the
+            // bodies through each other.
+            if constexpr (multi_field) resolve_contact(false);
             update_material_points(dt, grid_.velocity);
         }
         map_forces();
@@ -354,7 +357,7 @@ private:
                 grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
         }
         grid_.apply_walls(grid_.velocity);
-        if constexpr (multi_field) resolve_contact();
+        if constexpr (multi_field) resolve_contact(false);
     }
 
     // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
@@ -390,7 +393,7 @@ private:
         }
         nodal_velocity(grid_.velocity);
         grid_.apply_walls(grid_.velocity);
-        if constexpr (multi_field) resolve_contact();
+        if constexpr (multi_field) resolve_contact(true);
     }
 
     // L_p = sum v_i (x) G_ip; F update; then the constitutive policies
@@ -437,9 +440,12 @@ private:
     }
 
     // At every node shared by two or more bodies, let the contact policy correct the bodies'
-    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls.
-    void resolve_contact() {
+    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls. The grid
+    // update's pass records which nodes it engaged; MUSL's re-mapping pass keeps the constraint
+    // there (contact::node_view::constrained).
+    void resolve_contact(bool remap_pass) {
         const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
+        if (!remap_pass) engaged_.assign(nodes, 0);
         for (std::size_t node = 0; node < nodes; ++node) {
             scratch_.clear();
             for (std::size_t f = 0; f < fields_n; ++f)
@@ -457,7 +463,9 @@ private:
                 r_[j] = reach_[e];
             }
             contact::node_view<S> view{k, ids_.data(), m_.data(), p_.data(), n_.data(), r_.data(), grid_.cell(), dt_};
+            view.constrained = remap_pass && engaged_[node];
             contact_.resolve(view);
+            if (!remap_pass) engaged_[node] = view.engaged ? 1 : 0;
             for (std::size_t j = 0; j < k; ++j) {
                 const std::size_t e = scratch_[j] * nodes + node;
                 grid_.velocity[e] = p_[j] / m_[j];
@@ -521,6 +529,7 @@ private:
     std::vector<vector> mass_gradient_;
     std::vector<real> reach_;
     std::vector<std::size_t> scratch_;
+    std::vector<char> engaged_;
     std::vector<std::uint32_t> ids_;
     std::vector<real> m_, r_;
     std::vector<vector> p_, n_;
