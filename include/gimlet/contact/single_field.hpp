@@ -8,7 +8,8 @@
 namespace gimlet::contact {
 
 /// The "no contact algorithm" case of standard MPM (Sulsky et al. 1994): every body maps to the
-/// same nodal velocity, so bodies stick where their particles share nodes and cannot separate.
+/// same nodal velocity, so bodies interact as soon as their particles share nodes (up to about
+/// two cells apart) and, once their particle domains meet, stick and cannot separate.
 /// The grid holds a single field; no contact step runs.
 struct single_field {
     static constexpr bool multi_field = false;
