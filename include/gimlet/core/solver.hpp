@@ -169,6 +169,15 @@ public:
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
     [[nodiscard]] real time() const noexcept { return time_; }
+
+    /// Set the clock of a run resumed from saved particles (io/checkpoint.hpp): the simulated
+    /// time (s) and the number of steps already taken. The next step re-checks the particles.
+    void resume_at(real t, std::uint64_t steps_taken) {
+        require(std::isfinite(double(t)) && t >= 0, "resume time (s)", double(t), "finite and >= 0");
+        time_ = t;
+        steps_ = steps_taken;
+        state_touched_ = true;
+    }
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
 
 private:
