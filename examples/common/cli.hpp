@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Minimal command-line parsing shared by the examples: --name value pairs, each validated, with
-// a message that names the flag and its valid range. Not part of the library.
+// Minimal command-line parsing shared by the examples: `--name value` (or `--name=value`)
+// pairs, each validated, with a message that names the flag and its valid range. A bad flag
+// throws std::invalid_argument; the examples print it and exit non-zero. `--help` prints the
+// usage and exits 0. Not part of the library.
 
 #include <cmath>
 #include <cstdio>
@@ -12,6 +14,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace example {
 
@@ -19,24 +22,40 @@ class cli {
 public:
     cli(int argc, char** argv, std::string usage) : usage_(std::move(usage)) {
         for (int i = 1; i < argc; ++i) {
-            std::string a = argv[i];
-            if (a == "--help" || a == "-h") throw std::runtime_error(usage_);
-            if (a.rfind("--", 0) != 0 || i + 1 >= argc)
-                throw std::invalid_argument("unexpected argument '" + a + "'\n" + usage_);
-            values_[a.substr(2)] = argv[++i];
+            const std::string a = argv[i];
+            if (a == "--help" || a == "-h") {
+                std::printf("%s\n", usage_.c_str());
+                std::exit(0);
+            }
+            if (a.rfind("--", 0) != 0 || a.size() == 2)
+                throw std::invalid_argument("unexpected argument '" + a + "' (flags are --name value)\n" + usage_);
+            std::string name = a.substr(2), value;
+            if (const auto eq = name.find('='); eq != std::string::npos) {
+                value = name.substr(eq + 1);
+                name.resize(eq);
+            } else if (i + 1 < argc) {
+                value = argv[++i];
+            } else {
+                throw std::invalid_argument("flag --" + name + " needs a value\n" + usage_);
+            }
+            if (!values_.emplace(name, value).second)
+                throw std::invalid_argument("flag --" + name + " is given more than once\n" + usage_);
         }
     }
 
-    /// A real-valued flag in (lo, hi] or [lo, hi] (closed_low), with a default.
+    /// A real-valued flag in (lo, hi] or [lo, hi] (closed_low), with a default. Anything else
+    /// (not a number, trailing characters, nan, inf, out of range) is refused.
     double real(const std::string& name, double fallback, double lo, double hi, bool closed_low = false) {
         const auto it = take(name);
         if (!it) return fallback;
         char* end = nullptr;
         const double v = std::strtod(it->c_str(), &end);
-        const bool ok = end && *end == '\0' && std::isfinite(v) && (closed_low ? v >= lo : v > lo) && v <= hi;
+        const bool parsed = end != it->c_str() && *end == '\0';
+        const bool ok = parsed && std::isfinite(v) && (closed_low ? v >= lo : v > lo) && v <= hi;
         if (!ok)
-            throw std::invalid_argument("--" + name + " = " + *it + " is invalid; valid range: " +
-                                        (closed_low ? "[" : "(") + text(lo) + ", " + text(hi) + "]");
+            throw std::invalid_argument("--" + name + " = " + (it->empty() ? "''" : *it) +
+                                        " is invalid; valid range: " + (closed_low ? "[" : "(") + text(lo) + ", " +
+                                        text(hi) + "]");
         return v;
     }
 
@@ -52,17 +71,27 @@ public:
         throw std::invalid_argument("--" + name + " = " + *it + " is invalid; valid: " + list);
     }
 
-    /// An output directory flag: created if missing, must be writable.
+    /// An output directory flag: created if missing, then probed by writing a file into it.
+    /// Refused, with the reason, if it cannot be created or written.
     std::filesystem::path directory(const std::string& name, const std::string& fallback) {
         const auto it = take(name);
         const std::filesystem::path dir = it ? *it : fallback;
+        const auto refuse = [&](const std::string& why) {
+            throw std::invalid_argument("--" + name + " = " + (dir.empty() ? "''" : dir.string()) +
+                                        " is invalid; valid: a directory that can be created and written (" + why +
+                                        ")");
+        };
+        if (dir.empty()) refuse("empty path");
         std::error_code ec;
+        if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+            refuse("it exists and is not a directory");
         std::filesystem::create_directories(dir, ec);
-        const auto probe = dir / ".write_test";
-        std::ofstream f(probe);
-        if (ec || !f)
-            throw std::invalid_argument("--" + name + " = " + dir.string() + " is invalid; valid: a directory that can be created and written");
-        f.close();
+        if (ec) refuse("cannot create it: " + ec.message());
+        const auto probe = dir / ".gimlet_write_test";
+        {
+            std::ofstream f(probe);
+            if (!(f << "probe\n") || !f.flush()) refuse("cannot write a file in it");
+        }
         std::filesystem::remove(probe, ec);
         return dir;
     }
