@@ -1,0 +1,68 @@
+# SPDX-License-Identifier: MIT
+#
+# The examples refuse bad flags: each case runs an example binary with the given arguments
+# and passes if it exits non-zero (cleanly, no crash) and its output contains the expected
+# text, which names the flag and its valid range. Included by tests/CMakeLists.txt; one ctest
+# per case, named examples.cli.<example>.<case> and labelled `examples;cli`. The runs happen
+# in a scratch directory under the build tree (see run_cli.cmake), never in the source tree.
+#
+# Adding a case is one line:
+#   gimlet_cli_case(<example> <case> "<arguments>" "<text the message must contain>" [EXIT_ZERO])
+# `a_file` in the arguments is a regular file in the scratch directory. Cases of an example
+# whose folder does not exist yet are skipped, so they can be written ahead of it.
+
+set(_gimlet_cli_runner "${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake")
+
+function(gimlet_cli_case example name args expect)
+    cmake_parse_arguments(PARSE_ARGV 4 _cli "EXIT_ZERO" "" "")
+    if(NOT GIMLET_BUILD_EXAMPLES OR NOT EXISTS "${PROJECT_SOURCE_DIR}/examples/${example}/CMakeLists.txt")
+        return()
+    endif()
+    set(test "examples.cli.${example}.${name}")
+    # add_test would split a ';' inside an argument; $<SEMICOLON> keeps it.
+    string(REPLACE ";" "$<SEMICOLON>" expect "${expect}")
+    add_test(NAME "${test}"
+             COMMAND "${CMAKE_COMMAND}"
+                     "-DEXE=$<TARGET_FILE:${example}>"
+                     "-DARGS=${args}"
+                     "-DWORKDIR=${CMAKE_CURRENT_BINARY_DIR}/cli/${example}.${name}"
+                     "-DEXPECT=${expect}"
+                     "-DEXIT_ZERO=${_cli_EXIT_ZERO}"
+                     -P "${_gimlet_cli_runner}")
+    set_tests_properties("${test}" PROPERTIES LABELS "examples;cli" TIMEOUT 180)
+endfunction()
+
+# impact_1d
+gimlet_cli_case(impact_1d cell_zero       "--cell 0"          "--cell = 0 is invalid; valid range: (0, 1]")
+gimlet_cli_case(impact_1d velocity_nan    "--velocity nan"    "--velocity = nan is invalid; valid range: (0, 1000]")
+gimlet_cli_case(impact_1d velocity_text   "--velocity 3o0"    "--velocity = 3o0 is invalid; valid range: (0, 1000]")
+gimlet_cli_case(impact_1d end_negative    "--end-us -5"       "--end-us = -5 is invalid; valid range: (0, 5]")
+gimlet_cli_case(impact_1d threads_neg     "--threads -1"      "--threads = -1 is invalid; valid range: [0, 256]")
+gimlet_cli_case(impact_1d scheme_unknown  "--scheme rk4"      "--scheme = rk4 is invalid; valid: usf|musl|usl")
+gimlet_cli_case(impact_1d unknown_flag    "--speed 300"       "unknown flag --speed")
+gimlet_cli_case(impact_1d missing_value   "--cell"            "flag --cell needs a value")
+gimlet_cli_case(impact_1d given_twice     "--cell 0.1 --cell 0.2" "flag --cell is given more than once")
+gimlet_cli_case(impact_1d stray_argument  "300"               "unexpected argument '300'")
+gimlet_cli_case(impact_1d output_file     "--output a_file"   "--output = a_file is invalid; valid: a directory that can be created and written (it exists and is not a directory)")
+gimlet_cli_case(impact_1d output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written (cannot create it")
+gimlet_cli_case(impact_1d help            "--help"            "usage: impact_1d" EXIT_ZERO)
+
+# contact_validation
+gimlet_cli_case(contact_validation cell_zero      "--cell 0"         "--cell = 0 is invalid; valid range: (0, 4]")
+gimlet_cli_case(contact_validation velocity_nan   "--velocity nan"   "--velocity = nan is invalid; valid range: (0, 1000]")
+gimlet_cli_case(contact_validation time_negative  "--time-us -5"     "--time-us = -5 is invalid; valid range: (0, 40]")
+gimlet_cli_case(contact_validation unknown_flag   "--end-us 5"       "unknown flag --end-us")
+gimlet_cli_case(contact_validation output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
+
+# sulsky_disks
+gimlet_cli_case(sulsky_disks cell_zero     "--cell 0"          "--cell = 0 is invalid; valid range: (0, 0.2]")
+gimlet_cli_case(sulsky_disks velocity_nan  "--velocity nan"    "--velocity = nan is invalid; valid range: (0, 10]")
+gimlet_cli_case(sulsky_disks end_negative  "--end-time -5"     "--end-time = -5 is invalid; valid range: (0, 100]")
+gimlet_cli_case(sulsky_disks unknown_flag  "--time-us 5"       "unknown flag --time-us")
+gimlet_cli_case(sulsky_disks output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
+
+# custom_material
+gimlet_cli_case(custom_material relaxation_zero "--relaxation-time 0"   "--relaxation-time = 0 is invalid; valid range: (0, 1e+06]")
+gimlet_cli_case(custom_material relaxation_inf  "--relaxation-time inf" "--relaxation-time = inf is invalid; valid range: (0, 1e+06]")
+gimlet_cli_case(custom_material unknown_flag    "--cell 0.1"            "unknown flag --cell")
+gimlet_cli_case(custom_material output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
