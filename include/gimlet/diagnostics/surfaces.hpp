@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Where bodies end along a line: the gap between two bodies' facing surfaces, and the walls of
+/// a void inside one body with their closing speed. These give the reference paper's D (half
+/// the gap between the impact surfaces) and its relative wall velocity of a collapsing cavity
+/// (docs/reproduction.md defines both).
+///
+/// A body's surface is the edge of its outermost particle's domain: the particle centre plus
+/// half its initial spacing V0^(1/dim) / 2 along the line. Only particles whose centres lie in a
+/// strip around the line count: |x_k - a_k| <= strip_half_width for every axis k other than the
+/// line's. The strip is not wrapped across periodic boundaries.
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace gimlet::diagnostics {
+
+namespace detail {
+
+// A particle in the strip around a line: its coordinate along the line, half its initial
+// spacing, and its velocity along the line.
+struct strip_point {
+    double coordinate;
+    double half_spacing;
+    double velocity;
+    bool operator<(const strip_point& o) const noexcept { return coordinate < o.coordinate; }
+};
+
+template <class Solver>
+void check_line(int axis, double strip_half_width) {
+    require(axis >= 0 && axis < Solver::dim, "line axis", double(axis),
+            "0 .. " + gimlet::detail::to_text(double(Solver::dim - 1)));
+    require_positive("strip half-width (m)", strip_half_width);
+}
+
+// The particles of `body` in the strip around the line through `point` along `axis`, sorted
+// by coordinate along the line.
+template <class Solver>
+std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
+                               double strip_half_width) {
+    check_line<Solver>(axis, strip_half_width);
+    std::vector<strip_point> out;
+    const auto& store = s.particles();
+    const auto& x = store.template column<fields::position>();
+    const auto& v = store.template column<fields::velocity>();
+    const auto& b = store.template column<fields::body>();
+    const auto& v0 = store.template column<fields::volume0>();
+    for (std::size_t i = 0; i < store.size(); ++i) {
+        if (b[i] != body) continue;
+        bool inside = true;
+        for (int k = 0; k < Solver::dim; ++k)
+            if (k != axis && std::abs(double(x[i][k] - point[k])) > strip_half_width) inside = false;
+        if (!inside) continue;
+        const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
+        out.push_back({double(x[i][axis]), half, double(v[i][axis])});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Mean velocity of the strip particles with coordinate in [lo, hi] (the wall particle is one).
+inline double layer_velocity(const std::vector<strip_point>& pts, double lo, double hi) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (const auto& p : pts)
+        if (p.coordinate >= lo && p.coordinate <= hi) sum += p.velocity, ++n;
+    return n ? sum / double(n) : 0.0;
+}
+
+}  // namespace detail
+
+/// The gap along a line between the surface of `lower` facing larger coordinates and the
+/// surface of `upper` facing smaller ones.
+struct surface_gap_result {
+    bool found = false;           ///< both bodies have particles in the strip
+    double lower_surface = 0;     ///< m: the lower body's largest particle centre + half spacing
+    double upper_surface = 0;     ///< m: the upper body's smallest particle centre - half spacing
+    /// m: upper_surface - lower_surface. Negative when the domains overlap (bodies in contact
+    /// and compressed: the domains keep their initial size while the centres close in).
+    [[nodiscard]] double gap() const noexcept { return upper_surface - lower_surface; }
+};
+
+/// The gap between body `lower` and body `upper` along the line through `point` parallel to
+/// axis `axis`, from the particles within `strip_half_width` (m) of the line.
+template <class Solver>
+[[nodiscard]] surface_gap_result surface_gap(const Solver& s, std::uint32_t lower, std::uint32_t upper, int axis,
+                                             const typename Solver::vector& point, double strip_half_width) {
+    const auto lo = detail::strip(s, lower, axis, point, strip_half_width);
+    const auto hi = detail::strip(s, upper, axis, point, strip_half_width);
+    surface_gap_result r;
+    if (lo.empty() || hi.empty()) return r;
+    r.found = true;
+    r.lower_surface = -std::numeric_limits<double>::infinity();
+    for (const auto& p : lo) r.lower_surface = std::max(r.lower_surface, p.coordinate + p.half_spacing);
+    r.upper_surface = std::numeric_limits<double>::infinity();
+    for (const auto& p : hi) r.upper_surface = std::min(r.upper_surface, p.coordinate - p.half_spacing);
+    return r;
+}
+
+/// A void inside one body, cut by a line: its two walls and how fast they approach each other.
+struct void_chord_result {
+    bool open = false;        ///< a void wider than the threshold crosses the line near the point
+    double lower_wall = 0;    ///< m: domain edge of the wall at the smaller coordinate
+    double upper_wall = 0;    ///< m: domain edge of the wall at the larger coordinate
+    double lower_wall_velocity = 0;  ///< m/s along the line: mean over the wall's particle layer
+    double upper_wall_velocity = 0;  ///< m/s along the line
+    /// m: the void's length along the line (0 when closed).
+    [[nodiscard]] double length() const noexcept { return open ? upper_wall - lower_wall : 0.0; }
+    /// m/s: the rate at which the walls approach each other (positive while the void shrinks).
+    [[nodiscard]] double closing_speed() const noexcept { return lower_wall_velocity - upper_wall_velocity; }
+    /// m: the void's midpoint along the line.
+    [[nodiscard]] double centre() const noexcept { return 0.5 * (lower_wall + upper_wall); }
+};
+
+/// The void of body `body` crossed by the line through `point` along `axis`: the gap between
+/// consecutive particle domains in the strip that contains point[axis] (or, if none does, the
+/// nearest one), provided it is wider than `min_width` (m). A wall's velocity is the mean over
+/// the strip's particles within three quarters of a particle spacing of the wall particle,
+/// behind it: the wall's own particle layer, not the next one (compression brings that no
+/// closer than about 0.9 spacing).
+template <class Solver>
+[[nodiscard]] void_chord_result void_chord(const Solver& s, std::uint32_t body, int axis,
+                                           const typename Solver::vector& point, double strip_half_width,
+                                           double min_width) {
+    require_positive("void threshold width (m)", min_width);
+    const auto pts = detail::strip(s, body, axis, point, strip_half_width);
+    void_chord_result r;
+    const double target = double(point[axis]);
+    double best_distance = std::numeric_limits<double>::infinity();
+    std::size_t best = 0;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        const double lo = pts[k].coordinate + pts[k].half_spacing;
+        const double hi = pts[k + 1].coordinate - pts[k + 1].half_spacing;
+        if (hi - lo <= min_width) continue;
+        const double distance = target < lo ? lo - target : (target > hi ? target - hi : 0.0);
+        if (distance < best_distance) best_distance = distance, best = k;
+    }
+    if (!std::isfinite(best_distance)) return r;
+    r.open = true;
+    const auto& below = pts[best];
+    const auto& above = pts[best + 1];
+    r.lower_wall = below.coordinate + below.half_spacing;
+    r.upper_wall = above.coordinate - above.half_spacing;
+    r.lower_wall_velocity = detail::layer_velocity(pts, below.coordinate - 1.5 * below.half_spacing, below.coordinate);
+    r.upper_wall_velocity = detail::layer_velocity(pts, above.coordinate, above.coordinate + 1.5 * above.half_spacing);
+    return r;
+}
+
+}  // namespace gimlet::diagnostics
