@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The reference paper's cavity-collapse runs (its section 4, PHYSICS.md section 8): two HMX
+// blocks 40 mm x 50 mm, one above the other with a 4 mm gap, each with a circular cavity of
+// radius R at its centre, moving towards each other at v; periodic in x, free in y.
+// Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
+
+#include <gimlet/gimlet.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace cavity_collapse {
+
+using S = gimlet::space<2>;
+using material = gimlet::materials::hmx_material<>;
+
+constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
+constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's sides
+
+enum class contact_kind { single, bardenhagen, distance };
+
+inline std::string name_of(contact_kind c) {
+    switch (c) {
+        case contact_kind::single: return "single";
+        case contact_kind::bardenhagen: return "bardenhagen";
+        default: return "distance";
+    }
+}
+
+struct settings {
+    double velocity = 300.0;    // m/s, each block
+    double radius = 10e-3;      // m, each cavity (0: no cavity)
+    double cell = 0.5e-3;       // m
+    contact_kind contact = contact_kind::distance;
+    double end = 40e-6;         // s
+    double sample_every = 0.1e-6;    // s, series.csv interval
+    double snapshot_every = 4e-6;    // s, particle snapshots (0: none)
+    double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
+    int threads = 0;
+};
+
+// The lower block is body 0, the upper block body 1.
+inline double interface_y() { return height + 0.5 * gap; }
+inline S::vector cavity_centre(int body) {
+    return S::vector(0.5 * width, body == 0 ? 0.5 * height : 1.5 * height + gap);
+}
+// Nominal time of first contact: the gap closes at 2v. The paper's snapshot times fit a clock
+// started at contact (docs/reproduction.md), so the series carries both.
+inline double contact_time(const settings& s) { return gap / (2 * s.velocity); }
+
+inline void validate(const settings& s) {
+    gimlet::require(std::isfinite(s.velocity) && s.velocity > 0 && s.velocity <= 2000, "velocity (m/s)", s.velocity,
+                    "(0, 2000]");
+    gimlet::require(std::isfinite(s.radius) && s.radius >= 0 && s.radius <= max_radius, "cavity radius (m)", s.radius,
+                    "[0, 0.018] (0 = no cavity; the block is 0.04 m wide)");
+    gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 4e-3, "cell size (m)", s.cell, "(0, 4e-3]");
+    const double cells_x = width / s.cell, cells_gap = gap / s.cell;
+    gimlet::require(std::abs(cells_x - std::round(cells_x)) < 1e-9 * cells_x &&
+                        std::abs(cells_gap - std::round(cells_gap)) < 1e-9 * cells_gap,
+                    "cell size (m)", s.cell, "a divisor of the block width 0.04 m and the gap 0.004 m");
+    gimlet::require(std::isfinite(s.end) && s.end > 0 && s.end <= 1e-3, "end time (s)", s.end, "(0, 1e-3]");
+    gimlet::require(std::isfinite(s.sample_every) && s.sample_every > 0, "series interval (s)", s.sample_every, "> 0");
+    gimlet::require(std::isfinite(s.snapshot_every) && s.snapshot_every >= 0, "snapshot interval (s)",
+                    s.snapshot_every, ">= 0 (0 = none)");
+    gimlet::require_positive("hot-spot radius (m)", s.hot_spot_radius);
+    gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
+}
+
+inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
+    validate(s);
+    gimlet::grid_spec<S> gs;
+    const double margin = 10e-3;  // room for the free ends to move
+    gs.lower = S::vector(0.0, -margin);
+    gs.upper = S::vector(width, 2 * height + gap + margin);
+    gs.cell = s.cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
+    gimlet::scene::scene<S, material> scene(gs);
+    const auto hmx = gimlet::materials::make_hmx();
+    const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
+    const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
+    const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);
+    if (s.radius > 0) {
+        using gimlet::scene::ball, gimlet::scene::difference;
+        scene.add_body(difference(lower, ball<S>(cavity_centre(0), s.radius)), hmx, up, 2, "lower block");
+        scene.add_body(difference(upper, ball<S>(cavity_centre(1), s.radius)), hmx, down, 2, "upper block");
+    } else {
+        scene.add_body(lower, hmx, up, 2, "lower block");
+        scene.add_body(upper, hmx, down, 2, "upper block");
+    }
+    return scene;
+}
+
+// One cavity's state on its axis (the vertical line through its centre) and across it.
+struct cavity_state {
+    bool open = false;
+    double axial_chord = 0;       // m
+    double lateral_chord = 0;     // m: the widest horizontal chord across the axial one
+    double closing_speed = 0;     // m/s: the axial walls' approach speed (0 once closed)
+    double centre_y = 0;          // m: middle of the axial chord (last seen while open)
+};
+
+// One row of series.csv.
+struct sample {
+    double time = 0;
+    double D = 0;  // m: half the gap between the impact surfaces on the cavities' axis (>= 0)
+    double kinetic = 0, internal = 0;  // J per metre of depth
+    double max_temperature = 0, hot_spot = 0;  // K
+    S::vector hot_spot_centre = S::vector::Zero();
+    cavity_state cavity[2];
+    [[nodiscard]] double wall_relative_velocity() const {
+        return std::max(cavity[0].closing_speed, cavity[1].closing_speed);
+    }
+};
+
+// Measures one sample; keeps the cavities' last centres so it can follow them.
+class monitor {
+public:
+    explicit monitor(const settings& s) : s_(s) {
+        for (int b = 0; b < 2; ++b) centre_y_[b] = cavity_centre(b)[1];
+    }
+
+    template <class Solver>
+    sample measure(const Solver& sol) {
+        sample r;
+        r.time = double(sol.time());
+        // Strip half a cell wide on each side of the axis: the two particle columns nearest it.
+        const double strip = 0.5 * s_.cell;
+        const double spacing = s_.cell / 2;  // 2 x 2 particles per cell
+        const S::vector axis_point(0.5 * width, interface_y());
+        const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, 1, axis_point, strip);
+        r.D = g.found ? 0.5 * std::max(0.0, g.gap()) : 0.0;
+        r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
+        r.internal = gimlet::diagnostics::internal_energy(sol);
+        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius);
+        r.max_temperature = hs.max_temperature;
+        r.hot_spot = hs.temperature;
+        r.hot_spot_centre = hs.centre;
+        if (s_.radius > 0) {
+            for (std::uint32_t b = 0; b < 2; ++b) {
+                auto& c = r.cavity[b];
+                const S::vector on_axis(0.5 * width, centre_y_[b]);
+                const auto axial = gimlet::diagnostics::void_chord(sol, b, 1, on_axis, strip, spacing);
+                c.open = axial.open;
+                c.centre_y = axial.open ? axial.centre() : centre_y_[b];
+                centre_y_[b] = c.centre_y;
+                if (!axial.open) continue;
+                c.axial_chord = axial.length();
+                c.closing_speed = axial.closing_speed();
+                // The widest of five horizontal chords spread along the axial one: a jet leaves a
+                // crescent that is wide near the far wall but narrow at the chord's middle.
+                for (int k = 1; k <= 5; ++k) {
+                    const S::vector across(0.5 * width, axial.lower_wall + k / 6.0 * c.axial_chord);
+                    const auto lateral = gimlet::diagnostics::void_chord(sol, b, 0, across, strip, spacing);
+                    c.lateral_chord = std::max(c.lateral_chord, lateral.length());
+                }
+            }
+        }
+        return r;
+    }
+
+private:
+    settings s_;
+    double centre_y_[2];
+};
+
+// What a whole run comes to (summary.csv). D_max is the largest D after the first contact and
+// before the secondary impact (or the run's end); a contact is D falling to zero.
+struct summary {
+    // A cavity counts as closed when its axial chord is below this fraction of 2R: the jet
+    // can trap a pocket of about a particle spacing where it lands.
+    static constexpr double closed_fraction = 0.05;
+
+    double first_contact = -1;      // s
+    double separation = -1;         // s: D first > 0 after the first contact
+    double D_max = 0, t_D_max = -1; // m, s
+    double secondary_impact = -1;   // s
+    double max_wall_relative_velocity = 0;  // m/s
+    double max_hot_spot = 0, max_temperature = 0;  // K
+    double t_hot_spot = -1;
+    // K: at the last sample. The peak is a transient of the jet's landing (the compression
+    // part of the heating reverses on release); what stays is plastic work and shock entropy.
+    double final_hot_spot = 0;
+    // Asymmetric collapse (docs/reproduction.md): a cavity's axial chord closes (the upstream
+    // wall reaches the downstream one: the chord falls below closed_fraction of 2R) while, at the last sample before, the cavity was more
+    // than twice as wide across as along its axis. A cavity shrinking evenly keeps the ratio
+    // near one; a jet closes the axis of a still-wide cavity.
+    bool asymmetric[2] = {false, false};
+    double closure[2] = {-1, -1};   // s
+    cavity_state last_open[2];
+
+    void add(const sample& r, const settings& s) {
+        // Contacting domains jitter by a few hundredths of a particle spacing, so the bodies
+        // count as separated once D exceeds a quarter of a spacing, and as touching again when
+        // D falls below a twentieth.
+        const double spacing = 0.5 * s.cell;
+        if (first_contact < 0) {
+            if (r.D < 0.05 * spacing) first_contact = r.time;
+        } else if (separation < 0) {
+            if (r.D > 0.25 * spacing) separation = r.time;
+        } else if (secondary_impact < 0 && r.D < 0.05 * spacing) {
+            secondary_impact = r.time;
+        }
+        if (first_contact >= 0 && secondary_impact < 0 && r.D > D_max) D_max = r.D, t_D_max = r.time;
+        // Walls count until their cavity closes: a pocket the jet traps has walls too.
+        for (int b = 0; b < 2; ++b)
+            if (closure[b] < 0) max_wall_relative_velocity = std::max(max_wall_relative_velocity, r.cavity[b].closing_speed);
+        if (r.hot_spot > max_hot_spot) max_hot_spot = r.hot_spot, t_hot_spot = r.time;
+        final_hot_spot = r.hot_spot;
+        max_temperature = std::max(max_temperature, r.max_temperature);
+        for (int b = 0; b < 2 && s.radius > 0; ++b) {
+            if (closure[b] >= 0) continue;
+            if (r.cavity[b].open && r.cavity[b].axial_chord > closed_fraction * 2 * s.radius) {
+                last_open[b] = r.cavity[b];
+            } else {
+                closure[b] = r.time;
+                asymmetric[b] = last_open[b].lateral_chord > 2 * last_open[b].axial_chord;
+            }
+        }
+    }
+};
+
+}  // namespace cavity_collapse

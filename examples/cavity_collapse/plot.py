@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Figures of one cavity_collapse run: python3 plot.py OUTPUT_DIR.
+
+series.png: D, the relative wall velocity and the temperatures against the time after the
+nominal first contact. map_NNNN.png: pressure and temperature of the particles at each
+snapshot, like the paper's snapshot figures.
+"""
+import csv
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with path.open() as f:
+        rows = list(csv.DictReader(f))
+    def number(text):
+        try:
+            return float(text)
+        except ValueError:
+            return text
+
+    return {k: [number(r[k]) for r in rows] for k in rows[0]} if rows else {}
+
+
+out = Path(sys.argv[1])
+s = read(out / "series.csv")
+t = s["time_after_contact_us"]
+fig, ax = plt.subplots(3, 1, figsize=(6.4, 7.2), sharex=True)
+ax[0].plot(t, s["D_mm"], lw=1.2)
+ax[0].set_ylabel("D (mm)")
+ax[1].plot(t, s["wall_relative_velocity_m_s"], lw=1.0)
+ax[1].set_ylabel("relative wall\nvelocity (m/s)")
+ax[2].plot(t, s["max_temperature_K"], lw=1.0, label="hottest particle")
+ax[2].plot(t, s["hotspot_temperature_K"], lw=1.2, label="hot spot (disc mean)")
+ax[2].set_ylabel("temperature (K)")
+ax[2].set_xlabel("time after contact (us)")
+ax[2].legend()
+fig.tight_layout()
+fig.savefig(out / "series.png", dpi=110)
+plt.close(fig)
+
+# 2 x 2 particles per cell
+spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
+snaps = out / "snapshots"
+times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
+for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", [])):
+    m = read(snaps / f"map_{int(i):04d}.csv")
+    fig, ax = plt.subplots(1, 2, figsize=(8.0, 5.2), sharey=True)
+    # Marker area (points^2) that tiles the particle spacing at this figure size.
+    span = max(m["y_mm"]) - min(m["y_mm"])
+    size = (4.2 * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
+    for a, key, label, cmap, lo in ((ax[0], "pressure_MPa", "pressure (MPa)", "viridis", None),
+                                    (ax[1], "temperature_K", "temperature (K)", "inferno", 300.0)):
+        vals = sorted(m[key])
+        hi = vals[int(0.999 * (len(vals) - 1))]  # a few extreme particles would wash out the map
+        sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
+                       linewidths=0, rasterized=True)
+        a.set_aspect("equal")
+        a.set_xlabel("x (mm)")
+        fig.colorbar(sc, ax=a, label=label, shrink=0.8)
+    ax[0].set_ylabel("y (mm)")
+    fig.suptitle(f"t = {tc:.1f} us after contact")
+    fig.tight_layout()
+    fig.savefig(out / f"map_{int(i):04d}.png", dpi=100)
+    plt.close(fig)
