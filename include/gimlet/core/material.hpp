@@ -16,6 +16,9 @@
 #include "gimlet/viscosity/concepts.hpp"
 #include "gimlet/viscosity/none.hpp"
 
+#include <cmath>
+#include <concepts>
+
 namespace gimlet {
 
 /// A material model composed of policies.
@@ -38,8 +41,17 @@ struct material {
     T thermal{};
     V viscosity{};
 
-    /// Throws invalid_parameter for a bad density; the policies validate themselves.
-    void validate() const { require_positive("density rho0 (kg/m^3)", density); }
+    /// Throws invalid_parameter for a bad density, or an EOS whose own reference density
+    /// (`eos.density0()`, e.g. eos::mie_gruneisen) differs from it; the policies validate their
+    /// other parameters themselves.
+    void validate() const {
+        require_positive("density rho0 (kg/m^3)", density);
+        if constexpr (requires { { eos.density0() } -> std::convertible_to<double>; }) {
+            const double eos_density = eos.density0();
+            require(std::abs(eos_density - density) <= 1e-9 * density, "EOS reference density rho0 (kg/m^3)",
+                    eos_density, "equal to the material density rho0 = " + detail::to_text(density) + " kg/m^3");
+        }
+    }
 };
 
 /// A type is a material bundle.

@@ -5,6 +5,7 @@
 /// shock and plastic-work heating, with the paper's constants (PHYSICS.md section 7).
 
 #include "gimlet/core/elastic_moduli.hpp"
+#include "gimlet/core/error.hpp"
 #include "gimlet/core/material.hpp"
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/strength/von_mises.hpp"
@@ -42,6 +43,7 @@ template <eos::energy_reference Ref = eos::energy_reference::internal_energy,
 [[nodiscard]] hmx_material<Ref, X, V> make_hmx(const hmx_constants& c = {}, const V& viscosity = V{}) {
     // Shear from E and nu; pressure from the EOS (the elastic bulk modulus E/(3(1-2nu)) is not
     // used: PHYSICS.md section 7).
+    require_positive("density rho0 (kg/m^3)", c.density);  // before the EOS and thermal name it
     const auto moduli = elastic_moduli::from_young_poisson(c.young, c.poisson);
     return {c.density,
             strength::von_mises{moduli.shear, c.yield_stress, c.hardening},

@@ -8,6 +8,7 @@
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/space.hpp"
 
+#include <cmath>
 #include <concepts>
 #include <string>
 
@@ -64,11 +65,56 @@ private:
     real r_;
 };
 
+}  // namespace gimlet::scene
+
+namespace gimlet::detail {
+template <class T>
+inline constexpr bool is_scene_box = false;
+template <Space S>
+inline constexpr bool is_scene_box<scene::box<S>> = true;
+template <class T>
+inline constexpr bool is_scene_ball = false;
+template <Space S>
+inline constexpr bool is_scene_ball<scene::ball<S>> = true;
+}  // namespace gimlet::detail
+
+namespace gimlet::scene {
+
 /// Points of A that are not in B: a block with a cavity is difference(box, ball).
+///
+/// Validated: B must overlap A (a cavity that misses its block is misplaced, often by a unit
+/// slip). For a box minus a ball the check is exact: the radius must exceed the distance from
+/// the centre to the box. A ball that pokes out of its box (a notch) is allowed; a cavity that
+/// removes the whole block is refused when the solver fills it (no particles).
 template <class A, class B>
 class difference {
 public:
-    difference(A a, B b) : a_(std::move(a)), b_(std::move(b)) {}
+    difference(A a, B b) : a_(std::move(a)), b_(std::move(b)) {
+        if constexpr (gimlet::detail::is_scene_box<A> && gimlet::detail::is_scene_ball<B>) {
+            double nearest = 0;
+            std::string where = "(";
+            for (int d = 0; d < int(b_.centre().size()); ++d) {
+                const double c = double(b_.centre()[d]), lo = double(a_.lower()[d]), hi = double(a_.upper()[d]);
+                const double out = c < lo ? lo - c : c > hi ? c - hi : 0.0;
+                nearest += out * out;
+                where += (d ? ", " : "") + gimlet::detail::to_text(c);
+            }
+            nearest = std::sqrt(nearest);
+            require(double(b_.radius()) > nearest, "cavity (ball) radius (m)", double(b_.radius()),
+                    "> " + gimlet::detail::to_text(nearest) + ", the distance from its centre " + where +
+                        ") m to the block: a smaller ball misses the block");
+        } else {
+            const auto alo = a_.lower(), ahi = a_.upper(), blo = b_.lower(), bhi = b_.upper();
+            for (int d = 0; d < int(alo.size()); ++d) {
+                require(double(blo[d]) < double(ahi[d]) && double(bhi[d]) > double(alo[d]),
+                        std::string("removed region's extent along ") + "xyz"[d] + " (m, upper end; lower end " +
+                            gimlet::detail::to_text(double(blo[d])) + ")",
+                        double(bhi[d]),
+                        "overlapping the region it is removed from, [" + gimlet::detail::to_text(double(alo[d])) +
+                            ", " + gimlet::detail::to_text(double(ahi[d])) + "]");
+            }
+        }
+    }
     template <class V>
     [[nodiscard]] bool contains(const V& x) const {
         return a_.contains(x) && !b_.contains(x);

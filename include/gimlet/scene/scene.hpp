@@ -9,6 +9,7 @@
 #include "gimlet/core/material.hpp"
 #include "gimlet/scene/geometry.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -48,6 +49,13 @@ public:
                 particles_per_cell, "1 to 8 (per axis)");
         for (int d = 0; d < S::dim; ++d) require_finite("initial velocity component (m/s)", double(velocity[d]));
         if (name.empty()) name = "body " + std::to_string(bodies_.size());
+        const vector lo = region.lower(), hi = region.upper();
+        for (int d = 0; d < S::dim; ++d) {
+            const bool finite = std::isfinite(double(lo[d])) && std::isfinite(double(hi[d]));
+            require(finite && hi[d] > lo[d],
+                    "bounding box of " + name + " along " + std::string(1, "xyz"[d]) + " (upper - lower, m)",
+                    double(hi[d]) - double(lo[d]), "finite and > 0 (a region with finite, ordered bounds)");
+        }
         bodies_.push_back(body_type{std::move(name), material, velocity, particles_per_cell,
                                     [region](const vector& x) { return bool(region.contains(x)); },
                                     region.lower(), region.upper()});
