@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: MIT
+// The observers behind the cavity-collapse measurements (surface gap, void chord and its wall
+// speed, hot spot) on scenes where the answer is known by construction.
+#include <gimlet/gimlet.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace {
+
+using S = gimlet::space<2>;
+using hmx = gimlet::materials::hmx_material<>;
+using solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
+using gimlet::fields::position, gimlet::fields::velocity, gimlet::fields::temperature;
+
+constexpr double h = 1e-3;  // cell
+
+gimlet::grid_spec<S> grid() {
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector(0.0, 0.0);
+    gs.upper = S::vector(20e-3, 40e-3);
+    gs.cell = h;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
+    return gs;
+}
+
+// Two blocks 3 mm apart (faces on grid lines, so every lattice fills them exactly); the lower one with a cavity of radius 4 mm at (10, 8) mm.
+solver two_blocks(int ppc_lower, int ppc_upper) {
+    gimlet::scene::scene<S, hmx> sc(grid());
+    const auto mat = gimlet::materials::make_hmx();
+    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
+    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
+                mat, S::vector::Zero(), ppc_lower, "lower");
+    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), ppc_upper, "upper");
+    return solver(sc);
+}
+
+}  // namespace
+
+TEST_CASE("surface_gap: the gap between two blocks is the distance between their faces", "[diagnostics]") {
+    for (int ppc : {1, 2, 4}) {
+        const auto sol = two_blocks(2, ppc);
+        // On the cavity's axis and away from it: the faces are flat, so the gap is 3 mm everywhere.
+        for (double x : {10e-3, 3.3e-3}) {
+            const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, 1, S::vector(x, 16e-3), 0.75 * h);
+            REQUIRE(g.found);
+            CHECK(g.lower_surface == Approx(15e-3).epsilon(1e-12));
+            CHECK(g.upper_surface == Approx(18e-3).epsilon(1e-12));
+            CHECK(g.gap() == Approx(3e-3).epsilon(1e-9));
+        }
+    }
+    // A body with no particles in the strip (here: no such body) gives no gap rather than a number.
+    const auto sol = two_blocks(2, 2);
+    CHECK_FALSE(gimlet::diagnostics::surface_gap(sol, 0, 5, 1, S::vector(10e-3, 0.0), 0.5 * h).found);
+    CHECK_THROWS_WITH(gimlet::diagnostics::surface_gap(sol, 0, 1, 2, S::vector(10e-3, 0.0), 0.5 * h),
+                      Catch::Contains("line axis") && Catch::Contains("0 .. 1"));
+    CHECK_THROWS_WITH(gimlet::diagnostics::surface_gap(sol, 0, 1, 1, S::vector(10e-3, 0.0), 0.0),
+                      Catch::Contains("strip half-width"));
+}
+
+TEST_CASE("void_chord: a cavity's walls, length and closing speed", "[diagnostics]") {
+    auto sol = two_blocks(2, 2);
+    const double spacing = h / 2;
+    const S::vector centre(10e-3, 8e-3);
+    // The particle lattice resolves the circle to within one particle spacing.
+    const auto axial = gimlet::diagnostics::void_chord(sol, 0, 1, centre, 0.5 * h, spacing);
+    REQUIRE(axial.open);
+    CHECK(std::abs(axial.length() - 8e-3) <= spacing);
+    CHECK(std::abs(axial.centre() - 8e-3) <= 0.5 * spacing);
+    const auto lateral = gimlet::diagnostics::void_chord(sol, 0, 0, centre, 0.5 * h, spacing);
+    REQUIRE(lateral.open);
+    CHECK(std::abs(lateral.length() - 8e-3) <= spacing);
+
+    // Material below the cavity's centre moves up at u and above it down at u: the walls close
+    // at exactly 2u; swapped, they open at 2u.
+    const double u = 123.0;
+    auto set_velocities = [&](double sign) {
+        auto& ps = sol.particles();
+        for (std::size_t i = 0; i < ps.size(); ++i) {
+            auto p = ps[i];
+            const bool below = p.get<position>()[1] < centre[1];
+            p.get<velocity>() = S::vector(7.0, sign * (below ? u : -u));  // the x part must not matter
+        }
+    };
+    set_velocities(1.0);
+    CHECK(gimlet::diagnostics::void_chord(sol, 0, 1, centre, 0.5 * h, spacing).closing_speed() == Approx(2 * u));
+    set_velocities(-1.0);
+    CHECK(gimlet::diagnostics::void_chord(sol, 0, 1, centre, 0.5 * h, spacing).closing_speed() == Approx(-2 * u));
+
+    // No void: the upper block is solid; a threshold wider than the cavity finds none either.
+    const auto solid = gimlet::diagnostics::void_chord(sol, 1, 1, S::vector(10e-3, 24e-3), 0.5 * h, spacing);
+    CHECK_FALSE(solid.open);
+    CHECK(solid.length() == 0.0);
+    CHECK_FALSE(gimlet::diagnostics::void_chord(sol, 0, 1, centre, 0.5 * h, 9e-3).open);
+    // A point off the void still finds the nearest one (the cavity seen from inside the wall).
+    const auto near = gimlet::diagnostics::void_chord(sol, 0, 1, S::vector(10e-3, 13e-3), 0.5 * h, spacing);
+    REQUIRE(near.open);
+    CHECK(near.length() == Approx(axial.length()));
+}
+
+TEST_CASE("hot_spot: the hottest disc's mass-weighted mean temperature", "[diagnostics]") {
+    auto sol = two_blocks(2, 2);
+    auto& ps = sol.particles();
+    const double radius = 0.6e-3;
+    // All at 300 K except a 3 mm disc at 800 K in the upper block: the hot spot is 800 K exactly.
+    const S::vector hot(6e-3, 24e-3);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        auto p = ps[i];
+        p.get<temperature>() = (p.get<position>() - hot).norm() < 3e-3 ? 800.0 : 300.0;
+    }
+    auto r = gimlet::diagnostics::hot_spot(sol, radius);
+    CHECK(r.temperature == Approx(800.0).epsilon(1e-12));
+    CHECK(r.max_temperature == 800.0);
+    CHECK((r.centre - hot).norm() < 3e-3);
+
+    // One particle at 1000 K among equal-mass particles at 300 K, away from any surface: the disc
+    // around it holds k particles (counted here by brute force), as does each disc around an
+    // interior neighbour within reach, so the hot spot is 300 + 700 / k.
+    std::size_t hottest = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        auto p = ps[i];
+        p.get<temperature>() = 300.0;
+        if ((p.get<position>() - hot).norm() < (ps[hottest].get<position>() - hot).norm()) hottest = i;
+    }
+    ps[hottest].get<temperature>() = 1000.0;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        if ((ps[i].get<position>() - ps[hottest].get<position>()).norm() <= radius) ++k;
+    REQUIRE(k >= 5);  // 2 x 2 particles per 1 mm cell: the 0.6 mm disc holds the neighbours
+    r = gimlet::diagnostics::hot_spot(sol, radius);
+    CHECK(r.particles == k);
+    CHECK(r.temperature == Approx(300.0 + 700.0 / double(k)).epsilon(1e-12));
+    CHECK(r.max_temperature == 1000.0);
+    // Every disc holding the hot particle and k particles ties; the lowest index wins, and
+    // all of them lie within the radius of it.
+    CHECK((r.centre - ps[hottest].get<position>()).norm() <= radius);
+
+    CHECK_THROWS_WITH(gimlet::diagnostics::hot_spot(sol, -1.0), Catch::Contains("hot-spot radius"));
+}
+
+TEST_CASE("progress: reports step, time and time left, and when the run is done", "[diagnostics]") {
+    auto sol = two_blocks(1, 1);
+    std::ostringstream out;
+    gimlet::diagnostics::progress bar(out, 1e-6, 1e-9);  // report at (almost) every step
+    sol.run_until(1e-6, bar);
+    const std::string text = out.str();
+    CHECK(text.find("left") != std::string::npos);
+    CHECK(text.find("of 1.000 us") != std::string::npos);
+    CHECK(text.find("t = 1.000 us: done") != std::string::npos);
+    CHECK_THROWS_WITH(gimlet::diagnostics::progress(out, 0.0), Catch::Contains("progress end time"));
+}
