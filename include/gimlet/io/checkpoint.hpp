@@ -39,6 +39,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/io/detail/file.hpp"
+#include "gimlet/io/detail/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -65,8 +66,8 @@ namespace gimlet::io {
 class checkpoint_error : public invalid_parameter {
 public:
     checkpoint_error(const std::filesystem::path& file, const std::string& problem)
-        : invalid_parameter("checkpoint file", "'" + file.string() + "'", problem),
-          message_("checkpoint file '" + file.string() + "' refused: " + problem),
+        : invalid_parameter("checkpoint file", detail::quoted(file.string()), problem),
+          message_(std::string("checkpoint file ") + detail::quoted(file.string()) + " refused: " + problem),
           problem_(problem) {}
     [[nodiscard]] const char* what() const noexcept override { return message_.c_str(); }
     /// The problem alone, without the file name.

@@ -46,11 +46,11 @@ public:
     [[nodiscard]] static pvd_writer resume(std::filesystem::path path, double time) {
         std::ifstream in(path, std::ios::binary);
         if (!in)
-            throw invalid_parameter("ParaView series file (.pvd)", "'" + path.string() + "'",
+            throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
                                     "an existing, readable .pvd file to continue");
         const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
         if (text.find("<Collection") == std::string::npos)
-            throw invalid_parameter("ParaView series file (.pvd)", "'" + path.string() + "'",
+            throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
                                     "a .pvd file holding a <Collection>");
         std::vector<entry> kept;
         for (const auto& e : parse(text, path))
@@ -113,7 +113,8 @@ private:
 
     // The value of attribute `name` in one element's text, unescaped; empty if absent.
     static std::string attribute(std::string_view element, std::string_view name) {
-        const std::string key = " " + std::string(name) + "=\"";
+        std::string key(1, ' ');
+        key.append(name).append("=\"");
         const auto start = element.find(key);
         if (start == std::string_view::npos) return {};
         const auto from = start + key.size();
@@ -133,7 +134,7 @@ private:
             // from_chars, not strtod: independent of the C locale's decimal point.
             const auto [stop, ec] = std::from_chars(t.data(), t.data() + t.size(), time);
             if (t.empty() || ec != std::errc{} || stop != t.data() + t.size() || file.empty())
-                throw invalid_parameter("ParaView series file (.pvd)", "'" + path.string() + "'",
+                throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
                                         "a .pvd whose every DataSet has a numeric timestep and a file (entry " +
                                             std::to_string(out.size()) + " has not)");
             out.push_back({time, std::move(file)});

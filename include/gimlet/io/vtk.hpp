@@ -52,6 +52,13 @@ concept eigen_dense = requires {
     typename T::PlainObject;
 };
 
+// An Eigen expression (2 * v), as opposed to a plain matrix type: evaluated before storing.
+template <class T>
+constexpr bool is_eigen_expression() {
+    if constexpr (eigen_dense<T>) return !std::is_same_v<T, typename T::PlainObject>;
+    else return false;
+}
+
 // How many components an array of values of type T has in the file: 1 for a scalar, 3 for a
 // vector (2-D padded with z = 0, so ParaView sees a vector), 9 for a square tensor (2x2 padded
 // to 3x3, row-major as ParaView labels them XX, XY, XZ, YX, ...). 0: not writable.
@@ -120,7 +127,7 @@ public:
         requires std::is_invocable_v<const F&, const particle&>
     vtp_writer& add(std::string name, F f, precision prec = precision::float64) {
         using R = std::remove_cvref_t<std::invoke_result_t<const F&, const particle&>>;
-        if constexpr (detail::eigen_dense<R> && !std::is_same_v<R, typename R::PlainObject>) {
+        if constexpr (detail::is_eigen_expression<R>()) {
             // Evaluate an Eigen expression into its plain type so nothing dangles.
             return add(std::move(name), [f = std::move(f)](const particle& p) {
                 return typename R::PlainObject(f(p));
@@ -131,13 +138,9 @@ public:
                           "vtp_writer::add: the function must return a scalar, an integer, an S::vector or a "
                           "square S::matrix / 3x3 tensor");
             check_name(name);
-            if constexpr (std::is_integral_v<R>) {
-                arrays_.push_back({std::move(name), "Int32", comps, 4, fill<std::int32_t>(std::move(f), name)});
-            } else if (prec == precision::float32) {
-                arrays_.push_back({std::move(name), "Float32", comps, 4, fill<float>(std::move(f), name)});
-            } else {
-                arrays_.push_back({std::move(name), "Float64", comps, 8, fill<double>(std::move(f), name)});
-            }
+            if constexpr (std::is_integral_v<R>) push<std::int32_t>(std::move(name), "Int32", comps, std::move(f));
+            else if (prec == precision::float32) push<float>(std::move(name), "Float32", comps, std::move(f));
+            else push<double>(std::move(name), "Float64", comps, std::move(f));
             return *this;
         }
     }
@@ -189,7 +192,13 @@ private:
         if (name.empty()) throw invalid_parameter("VTK array name", "''", "a non-empty name");
         for (const auto& a : arrays_)
             if (a.name == name)
-                throw invalid_parameter("VTK array name", "'" + name + "'", "a name not used by another array");
+                throw invalid_parameter("VTK array name", detail::quoted(name), "a name not used by another array");
+    }
+
+    template <class Out, class F>
+    void push(std::string name, const char* type, int comps, F f) {
+        auto fn = fill<Out>(std::move(f), name);  // before the move: it keeps the name for its messages
+        arrays_.push_back({std::move(name), type, comps, sizeof(Out), std::move(fn)});
     }
 
     // One type-erased call per array and snapshot (not per particle): the loop over particles

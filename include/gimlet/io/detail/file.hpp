@@ -5,6 +5,7 @@
 /// directory, checked, then renamed over the final name.
 
 #include "gimlet/core/error.hpp"
+#include "gimlet/io/detail/text.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -18,8 +19,15 @@ namespace gimlet::io::detail {
 /// The error for an output path that cannot be written.
 [[nodiscard]] inline invalid_parameter unwritable(const std::string& what, const std::filesystem::path& path,
                                                   const std::string& why) {
-    return invalid_parameter(what, "'" + path.string() + "'",
+    return invalid_parameter(what, detail::quoted(path.string()),
                              "a writable file (its directory must exist and allow writing; " + why + ")");
+}
+
+/// Remove a temporary file that will not be used; a failure to remove it must not hide the
+/// error that made it useless.
+inline void discard(const std::filesystem::path& tmp) noexcept {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
 }
 
 /// Write `path` through `fill(std::ofstream&)`. The bytes go to `<path>.tmp` first and are
@@ -35,21 +43,26 @@ void write_atomically(const std::filesystem::path& path, const std::string& what
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         if (!out) throw unwritable(what, path, "could not create " + tmp.filename().string());
-        fill(out);
-        out.flush();
-        const bool written = bool(out);
-        out.close();
+        bool written = false;
+        try {
+            fill(out);
+            out.flush();
+            written = bool(out);
+            out.close();
+        } catch (...) {
+            out.close();
+            discard(tmp);
+            throw;
+        }
         if (!written || out.fail()) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
+            discard(tmp);
             throw unwritable(what, path, "writing failed, e.g. the disk is full");
         }
     }
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
+        discard(tmp);
         throw unwritable(what, path, "renaming the finished file failed: " + ec.message());
     }
 }

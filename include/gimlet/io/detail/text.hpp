@@ -19,6 +19,17 @@ namespace gimlet::io::detail {
     return {buf.data(), r.ptr};
 }
 
+/// `s` in single quotes, for naming a path or a name in a message. (Built by appending: GCC 12
+/// reports a false -Wrestrict on `"'" + std::string`.)
+[[nodiscard]] inline std::string quoted(std::string_view s) {
+    std::string out;
+    out.reserve(s.size() + 2);
+    out += '\'';
+    out += s;
+    out += '\'';
+    return out;
+}
+
 /// `s` made safe inside a double-quoted XML attribute.
 [[nodiscard]] inline std::string xml_escape(std::string_view s) {
     std::string out;
