@@ -71,6 +71,15 @@ public:
         throw std::invalid_argument("--" + name + " = " + *it + " is invalid; valid: " + list);
     }
 
+    /// A file path flag; empty if not given and no fallback. The caller opens the file and
+    /// reports what is wrong with it.
+    std::string path(const std::string& name, const std::string& fallback = "") {
+        const auto it = take(name);
+        if (!it) return fallback;
+        if (it->empty()) throw std::invalid_argument("--" + name + " = '' is invalid; valid: a file path");
+        return *it;
+    }
+
     /// An output directory flag: created if missing, then probed by writing a file into it.
     /// Refused, with the reason, if it cannot be created or written.
     std::filesystem::path directory(const std::string& name, const std::string& fallback) {
