@@ -26,6 +26,14 @@ public:
         while (next_ <= double(s.time()) + 1e-12 * interval_) next_ += interval_;
     }
 
+    /// The time (s) of the next call; with resume(), what a checkpoint keeps of the observer.
+    [[nodiscard]] double next() const noexcept { return next_; }
+    /// Continue a schedule saved with next(), e.g. in a run resumed from a checkpoint.
+    void resume(double next) {
+        require_finite("observer next time (s)", next);
+        next_ = next;
+    }
+
 private:
     double interval_;
     F f_;
