@@ -66,3 +66,12 @@ gimlet_cli_case(custom_material relaxation_zero "--relaxation-time 0"   "--relax
 gimlet_cli_case(custom_material relaxation_inf  "--relaxation-time inf" "--relaxation-time = inf is invalid; valid range: (0, 1e+06]")
 gimlet_cli_case(custom_material unknown_flag    "--cell 0.1"            "unknown flag --cell")
 gimlet_cli_case(custom_material output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
+
+# cavity_collapse
+gimlet_cli_case(cavity_collapse radius_too_big "--radius 30"       "--radius = 30 is invalid; valid range: [0, 18]")
+gimlet_cli_case(cavity_collapse cell_zero      "--cell 0"          "--cell = 0 is invalid; valid range: (0, 4]")
+gimlet_cli_case(cavity_collapse velocity_nan   "--velocity nan"    "--velocity = nan is invalid; valid range: (0, 2000]")
+gimlet_cli_case(cavity_collapse end_negative   "--end-us -5"       "--end-us = -5 is invalid; valid range: (0, 1000]")
+gimlet_cli_case(cavity_collapse contact_unknown "--contact none"   "--contact = none is invalid; valid: single|bardenhagen|distance")
+gimlet_cli_case(cavity_collapse unknown_flag   "--time-us 5"       "unknown flag --time-us")
+gimlet_cli_case(cavity_collapse output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
