@@ -163,6 +163,13 @@ public:
         return r;
     }
 
+    // The state carried from sample to sample, by name (for checkpoints).
+    template <class F>
+    void visit(F&& f) {
+        f("centre_y_0", centre_y_[0]);
+        f("centre_y_1", centre_y_[1]);
+    }
+
 private:
     settings s_;
     double centre_y_[2];
@@ -192,6 +199,28 @@ struct summary {
     bool asymmetric[2] = {false, false};
     double closure[2] = {-1, -1};   // s
     cavity_state last_open[2];
+
+    // Every member by name (for checkpoints).
+    template <class F>
+    void visit(F&& f) {
+        f("first_contact", first_contact);
+        f("separation", separation);
+        f("D_max", D_max);
+        f("t_D_max", t_D_max);
+        f("secondary_impact", secondary_impact);
+        f("max_wall_relative_velocity", max_wall_relative_velocity);
+        f("max_hot_spot", max_hot_spot);
+        f("max_temperature", max_temperature);
+        f("t_hot_spot", t_hot_spot);
+        f("final_hot_spot", final_hot_spot);
+        for (int b = 0; b < 2; ++b) {
+            const std::string k = "_" + std::to_string(b);
+            f("asymmetric" + k, asymmetric[b]);
+            f("closure" + k, closure[b]);
+            f("last_open_axial_chord" + k, last_open[b].axial_chord);
+            f("last_open_lateral_chord" + k, last_open[b].lateral_chord);
+        }
+    }
 
     void add(const sample& r, const settings& s) {
         // Contacting domains jitter by a few hundredths of a particle spacing, so the bodies

@@ -4,13 +4,17 @@
 //
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
-//                   [--hot-spot-radius 0.5] [--threads 0] [--quiet]
+//                   [--hot-spot-radius 0.5] [--threads 0] [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
+//                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
 //
 // Writes OUTPUT/series.csv (one row per sample), OUTPUT/summary.csv (one row: D_max, secondary
-// impact, maximum relative wall velocity, hot spot, collapse mode), particle snapshots
-// OUTPUT/snapshots/map_NNNN.csv and, where python3 with matplotlib is available, PNG maps of
+// impact, maximum relative wall velocity, hot spot, collapse mode), particle snapshots for
+// ParaView (OUTPUT/snapshots/particles.pvd and particles_NNNNNN.vtp) and for the figures
+// (OUTPUT/snapshots/map_NNNN.csv) and, where python3 with matplotlib is available, PNG maps of
 // pressure and temperature and a plot of the series. docs/reproduction.md defines each quantity.
+// --checkpoint writes the run's state at --checkpoint-at-us; --restart resumes from it (give
+// the original run's other flags) and continues the same outputs.
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "common/cli.hpp"
 
@@ -19,7 +23,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <optional>
+#include <type_traits>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -61,46 +69,169 @@ void write_map(const std::filesystem::path& file, const Solver& sol) {
     if (!os) throw std::runtime_error("could not write " + file.string());
 }
 
+// Takes the checkpoint at the first step at or after the requested time, after that step's
+// outputs (it is the last observer but the progress line), so a resumed run starts exactly
+// where they stop.
+struct checkpointer {
+    std::function<void(double)> save;
+    double at;
+    bool done;
+    template <class Solver>
+    void maybe_call(const Solver& so) {
+        if (done || double(so.time()) < at) return;
+        done = true;
+        save(double(so.time()));
+    }
+};
+
+// Where a run writes, and whether it checkpoints or resumes.
+struct run_files {
+    std::filesystem::path out;
+    std::filesystem::path checkpoint;  // empty: none
+    double checkpoint_at = 0;          // s
+    std::filesystem::path restart;     // empty: a fresh run
+    bool quiet = false;
+};
+
+// Keeps the first `keep` lines of a text file (a header counts as one) and drops the rest: a
+// resumed run rewrites what the interrupted one wrote after its checkpoint.
+void keep_lines(const std::filesystem::path& file, std::size_t keep) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error("cannot read " + file.string() + " to continue it after a restart");
+    std::string text, line;
+    for (std::size_t n = 0; n < keep && std::getline(in, line); ++n) text += line + '\n';
+    in.close();
+    std::ofstream os(file, std::ios::trunc);
+    if (!(os << text)) throw std::runtime_error("cannot rewrite " + file.string());
+}
+
+double value_of(const gimlet::io::checkpoint_values& v, const std::string& key, const std::filesystem::path& file) {
+    const auto it = v.find(key);
+    if (it == v.end())
+        throw std::runtime_error(file.string() + " is not a cavity_collapse checkpoint (no value '" + key + "')");
+    return it->second;
+}
+
 template <class Contact>
-int run(const settings& s, const std::filesystem::path& out, bool quiet) {
+int run(const settings& s, const run_files& io) {
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
     gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, Contact{});
-    std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, cavity radius %.2f mm, cell %.3f mm, %s contact, "
-                "%zu particles, to %.2f us\n",
-                s.velocity, s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), sol.particles().size(),
-                s.end * 1e6);
-    std::fflush(stdout);
-
-    std::ofstream series(out / "series.csv");
-    series.precision(10);
-    write_header(series);
+    const auto& out = io.out;
     monitor mon(s);
     summary sum;
-    auto sampler = gimlet::diagnostics::every_time(s.sample_every, [&](const auto& so) {
+    std::size_t rows = 0, snapshot = 0;
+    std::ofstream series, times;
+    gimlet::io::vtp_writer_for<decltype(sol)> vtp;
+    vtp.add("pressure", [](const auto& p) { return gimlet::mean_pressure(p); })
+        .template add_field<gimlet::fields::temperature>()
+        .template add_field<gimlet::fields::velocity>()
+        .template add_field<gimlet::fields::plastic_strain>()
+        .template add_field<gimlet::fields::body>();
+    std::filesystem::create_directories(out / "snapshots");
+    const auto pvd_path = out / "snapshots" / "particles.pvd";
+    std::optional<gimlet::io::pvd_writer> pvd;
+    double next_sample = 0, next_snapshot = 0, last_sample = -1;
+
+    // What a checkpoint keeps besides the particles: where each output stands, the summary so
+    // far, and the flags that must not change on a restart.
+    auto save_values = [&] {
+        gimlet::io::checkpoint_values v{{"series_rows", double(rows)},
+                                        {"snapshots", double(snapshot)},
+                                        {"velocity_m_s", s.velocity},
+                                        {"radius_m", s.radius},
+                                        {"cell_m", s.cell},
+                                        {"contact", double(int(s.contact))},
+                                        {"sample_every_s", s.sample_every},
+                                        {"snapshot_every_s", s.snapshot_every},
+                                        {"hot_spot_radius_m", s.hot_spot_radius}};
+        mon.visit([&](const std::string& k, auto& x) { v["monitor." + k] = double(x); });
+        sum.visit([&](const std::string& k, auto& x) { v["summary." + k] = double(x); });
+        return v;
+    };
+
+    if (io.restart.empty()) {
+        series.open(out / "series.csv", std::ios::trunc);
+        write_header(series);
+        times.open(out / "snapshots" / "times.csv", std::ios::trunc);
+        times << "index,time_us,time_after_contact_us\n";
+        pvd.emplace(pvd_path);
+    } else {
+        const auto v = gimlet::io::load_checkpoint(io.restart, sol);
+        for (const auto& [key, mine] : {std::pair<std::string, double>{"velocity_m_s", s.velocity},
+                                        {"radius_m", s.radius},
+                                        {"cell_m", s.cell},
+                                        {"contact", double(int(s.contact))},
+                                        {"sample_every_s", s.sample_every},
+                                        {"snapshot_every_s", s.snapshot_every},
+                                        {"hot_spot_radius_m", s.hot_spot_radius}})
+            if (value_of(v, key, io.restart) != mine)
+                throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +
+                                            std::to_string(value_of(v, key, io.restart)) + ", this run's is " +
+                                            std::to_string(mine) + "; restart with the original run's flags");
+        rows = std::size_t(value_of(v, "series_rows", io.restart));
+        snapshot = std::size_t(value_of(v, "snapshots", io.restart));
+        next_sample = value_of(v, "next_sample_s", io.restart);
+        next_snapshot = value_of(v, "next_snapshot_s", io.restart);
+        last_sample = value_of(v, "last_sample_s", io.restart);
+        mon.visit([&](const std::string& k, auto& x) {
+            x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "monitor." + k, io.restart));
+        });
+        sum.visit([&](const std::string& k, auto& x) {
+            x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "summary." + k, io.restart));
+        });
+        keep_lines(out / "series.csv", rows + 1);
+        keep_lines(out / "snapshots" / "times.csv", snapshot + 1);
+        series.open(out / "series.csv", std::ios::app);
+        times.open(out / "snapshots" / "times.csv", std::ios::app);
+        pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
+    }
+    series.precision(17);  // exact: a resumed run's rows match the uninterrupted run's
+    times.precision(17);
+    if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
+    std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, cavity radius %.2f mm, cell %.3f mm, %s contact, "
+                "%zu particles, %s %.2f us to %.2f us\n",
+                s.velocity, s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), sol.particles().size(),
+                io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
+    std::fflush(stdout);
+
+    auto take_sample = [&](const auto& so) {
         const sample r = mon.measure(so);
         write_row(series, r, s);
         sum.add(r, s);
-    });
-    std::filesystem::create_directories(out / "snapshots");
-    int snapshot = 0;
-    std::ofstream times(out / "snapshots" / "times.csv");
-    times << "index,time_us,time_after_contact_us\n";
+        ++rows;
+        last_sample = double(so.time());
+    };
+    auto samples = gimlet::diagnostics::every_time(s.sample_every, take_sample);
     auto snapshots = gimlet::diagnostics::every_time(s.snapshot_every > 0 ? s.snapshot_every : 2 * s.end,
                                                      [&](const auto& so) {
         if (s.snapshot_every <= 0) return;
         char name[32];
-        std::snprintf(name, sizeof name, "map_%04d.csv", snapshot);
+        std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);
         write_map(out / "snapshots" / name, so);
+        pvd->write(vtp, so);
         times << snapshot << ',' << double(so.time()) * 1e6 << ',' << (double(so.time()) - contact_time(s)) * 1e6
               << '\n';
         ++snapshot;
     });
+    if (!io.restart.empty()) samples.resume(next_sample), snapshots.resume(next_snapshot);
+    checkpointer ckpt{[&](double t) {
+                          series.flush(), times.flush();
+                          auto v = save_values();
+                          v["next_sample_s"] = samples.next();
+                          v["next_snapshot_s"] = snapshots.next();
+                          v["last_sample_s"] = last_sample;
+                          gimlet::io::save_checkpoint(io.checkpoint, sol, v);
+                          std::printf("  checkpoint at %.3f us: %s\n", t * 1e6, io.checkpoint.string().c_str());
+                          std::fflush(stdout);
+                      },
+                      io.checkpoint_at, io.checkpoint.empty() || double(sol.time()) >= io.checkpoint_at};
     gimlet::diagnostics::progress bar(std::cerr, s.end);
     const auto start = std::chrono::steady_clock::now();
-    if (quiet) sol.run_until(s.end, sampler, snapshots);
-    else sol.run_until(s.end, sampler, snapshots, bar);
+    if (io.quiet) sol.run_until(s.end, samples, snapshots, ckpt);
+    else sol.run_until(s.end, samples, snapshots, ckpt, bar);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
     series.close();
     times.close();
     if (!series || !times) throw std::runtime_error("could not write the series in " + out.string());
@@ -108,14 +239,16 @@ int run(const settings& s, const std::filesystem::path& out, bool quiet) {
     std::ofstream su(out / "summary.csv");
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_hotspot_temperature_K,"
-          "t_hotspot_us,final_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,upper_closure_us,upper_asymmetric\n";
+          "t_hotspot_us,final_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
+          "upper_closure_us,upper_asymmetric\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
        << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
        << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_hot_spot << ','
-       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.max_temperature << ',' << us(sum.closure[0]) << ','
-       << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ',' << int(sum.asymmetric[1]) << '\n';
+       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.max_temperature << ','
+       << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
+       << int(sum.asymmetric[1]) << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
@@ -137,15 +270,17 @@ int run(const settings& s, const std::filesystem::path& out, bool quiet) {
 int main(int argc, char** argv) try {
     // --quiet is a switch without a value; the other flags are name-value pairs.
     std::vector<char*> rest{argv[0]};
-    bool quiet = false;
+    bool quiet = false, figures = true;
     for (int i = 1; i < argc; ++i) {
         if (std::string(argv[i]) == "--quiet") quiet = true;
+        else if (std::string(argv[i]) == "--no-figures") figures = false;
         else rest.push_back(argv[i]);
     }
     example::cli args(static_cast<int>(rest.size()), rest.data(),
                       "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
                       "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--hot-spot-radius R_mm] [--threads N] [--quiet] [--output DIR]");
+                      "[--snapshot-every-us T] [--hot-spot-radius R_mm] [--threads N] [--quiet] [--no-figures] [--output DIR] "
+                      "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
     settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
     s.radius = 1e-3 * args.real("radius", 10.0, 0.0, max_radius * 1e3, true);
@@ -158,24 +293,34 @@ int main(int argc, char** argv) try {
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
     s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
-    const auto out = args.directory("output", "results/cavity_collapse");
+    run_files io;
+    io.quiet = quiet;
+    io.out = args.directory("output", "results/cavity_collapse");
+    io.checkpoint = args.path("checkpoint");
+    io.checkpoint_at = 1e-6 * args.real("checkpoint-at-us", 0.0, 0.0, 1000.0, true);
+    io.restart = args.path("restart");
     args.finish();
     validate(s);
+    if (!io.checkpoint.empty() && io.checkpoint_at >= s.end)
+        throw std::invalid_argument("--checkpoint-at-us = " + std::to_string(io.checkpoint_at * 1e6) +
+                                    " is invalid; valid range: [0, --end-us) so the run reaches it");
 
     int rc = 0;
     switch (s.contact) {
-        case contact_kind::single: rc = run<gimlet::contact::single_field>(s, out, quiet); break;
-        case contact_kind::bardenhagen: rc = run<gimlet::contact::bardenhagen>(s, out, quiet); break;
-        case contact_kind::distance: rc = run<gimlet::contact::distance>(s, out, quiet); break;
+        case contact_kind::single: rc = run<gimlet::contact::single_field>(s, io); break;
+        case contact_kind::bardenhagen: rc = run<gimlet::contact::bardenhagen>(s, io); break;
+        case contact_kind::distance: rc = run<gimlet::contact::distance>(s, io); break;
     }
+    if (!figures) return rc;
     // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
     const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
-    const std::string plot = python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" \"" + out.string() + "\"";
+    const std::string plot = python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" \"" + io.out.string() + "\"";
     if (std::system((plot + " 2>/dev/null").c_str()) == 0)
-        std::printf("  figures: %s (series.png, map_*.png)\n", out.string().c_str());
+        std::printf("  figures: %s (series.png, map_*.png); ParaView: %s\n", io.out.string().c_str(),
+                    (io.out / "snapshots" / "particles.pvd").string().c_str());
     else
         std::printf("  (no figures: needs python3 with matplotlib; run %s)\n", plot.c_str());
-    std::printf("  series: %s\n", (out / "series.csv").string().c_str());
+    std::printf("  series: %s\n", (io.out / "series.csv").string().c_str());
     return rc;
 } catch (const std::exception& e) {
     std::cerr << "cavity_collapse: " << e.what() << '\n';

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+// The cavity_collapse example's own binary at a coarse cell: its outputs are complete and
+// finite, and a run resumed from a checkpoint writes exactly what the uninterrupted run writes.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef GIMLET_CAVITY_COLLAPSE
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the example with `args`; returns its exit status, its output in `log`.
+int run(const std::string& args, const fs::path& dir, std::string& log) {
+    fs::create_directories(dir);
+    const fs::path out = dir / "log.txt";
+    const std::string cmd = std::string("\"") + GIMLET_CAVITY_COLLAPSE + "\" " + args + " --quiet --no-figures > \"" +
+                            out.string() + "\" 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(out);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    log = ss.str();
+    return status;
+}
+
+std::string slurp(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+struct table {
+    std::vector<std::string> columns;
+    std::vector<std::vector<std::string>> rows;
+    [[nodiscard]] std::size_t column(const std::string& name) const {
+        for (std::size_t i = 0; i < columns.size(); ++i)
+            if (columns[i] == name) return i;
+        FAIL("no column " << name);
+        return 0;
+    }
+};
+
+table read_csv(const fs::path& file) {
+    std::ifstream in(file);
+    table t;
+    std::string line;
+    auto split = [](const std::string& l) {
+        std::vector<std::string> out;
+        std::stringstream ss(l);
+        for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
+        return out;
+    };
+    if (std::getline(in, line)) t.columns = split(line);
+    while (std::getline(in, line)) t.rows.push_back(split(line));
+    return t;
+}
+
+bool finite_number(const std::string& cell) {
+    char* end = nullptr;
+    const double v = std::strtod(cell.c_str(), &end);
+    return end != cell.c_str() && *end == '\0' && std::isfinite(v);
+}
+
+// 2 mm cells take steps of about 0.19 us; samples every 0.5 us.
+const std::string coarse = "--cell 2 --radius 10 --snapshot-every-us 8 --sample-every-us 0.5";
+
+}  // namespace
+
+TEST_CASE("cavity_collapse: a coarse run writes complete, finite outputs", "[examples][cavity]") {
+    const fs::path dir = fs::temp_directory_path() / "gimlet_test_cavity_smoke";
+    fs::remove_all(dir);
+    std::string log;
+    REQUIRE(run(coarse + " --velocity 300 --end-us 16 --output \"" + (dir / "out").string() + "\"", dir, log) == 0);
+    INFO(log);
+    const fs::path out = dir / "out";
+
+    const auto series = read_csv(out / "series.csv");
+    for (const char* name : {"time_us", "D_mm", "kinetic_energy", "internal_energy", "max_temperature_K",
+                             "hotspot_temperature_K", "wall_relative_velocity_m_s"})
+        CHECK(series.column(name) < series.columns.size());
+    // A sample every 0.5 us from 0 to 16 us inclusive.
+    CHECK(series.rows.size() == 33);
+    double previous = -1;
+    for (const auto& row : series.rows) {
+        REQUIRE(row.size() == series.columns.size());
+        for (const auto& cell : row) REQUIRE(finite_number(cell));
+        const double t = std::stod(row[series.column("time_us")]);
+        CHECK(t > previous);
+        previous = t;
+    }
+    // D starts at half the 4 mm gap; the energy is all kinetic at first.
+    CHECK(std::stod(series.rows.front()[series.column("D_mm")]) == Approx(2.0).epsilon(1e-12));
+    CHECK(std::stod(series.rows.front()[series.column("internal_energy")]) == 0.0);
+    CHECK(std::stod(series.rows.back()[series.column("time_us")]) == Approx(16.0).epsilon(1e-12));
+
+    const auto summary = read_csv(out / "summary.csv");
+    REQUIRE(summary.rows.size() == 1);
+    REQUIRE(summary.rows[0].size() == summary.columns.size());
+    for (std::size_t i = 0; i < summary.columns.size(); ++i)
+        if (summary.columns[i] != "contact") CHECK(finite_number(summary.rows[0][i]));
+    CHECK(summary.rows[0][summary.column("contact")] == "distance");
+    // The blocks meet when the gap has closed at 2v: 4 mm / 600 m/s = 6.67 us, to within a sample.
+    CHECK(std::stod(summary.rows[0][summary.column("first_contact_us")]) == Approx(6.667).margin(0.15));
+
+    // Snapshots at 0, 8 and 16 us: ParaView files and the figures' maps.
+    const std::string pvd = slurp(out / "snapshots" / "particles.pvd");
+    for (const char* f : {"particles_000000.vtp", "particles_000001.vtp", "particles_000002.vtp"}) {
+        CHECK(pvd.find(f) != std::string::npos);
+        const std::string vtp = slurp(out / "snapshots" / f);
+        for (const char* array : {"\"pressure\"", "\"temperature\"", "\"velocity\"", "\"plastic_strain\"", "\"body\""})
+            CHECK(vtp.find(array) != std::string::npos);
+    }
+    CHECK(pvd.find("particles_000003.vtp") == std::string::npos);
+    for (const char* f : {"map_0000.csv", "map_0001.csv", "map_0002.csv"}) CHECK(fs::file_size(out / "snapshots" / f) > 0);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the uninterrupted run writes",
+          "[examples][cavity][checkpoint]") {
+    const fs::path dir = fs::temp_directory_path() / "gimlet_test_cavity_restart";
+    fs::remove_all(dir);
+    const std::string a = (dir / "a").string(), b = (dir / "b").string(), ckpt = (dir / "b" / "run.ckpt").string();
+    std::string log;
+    REQUIRE(run(coarse + " --end-us 20 --output \"" + a + "\"", dir, log) == 0);
+    // The interrupted run goes past its checkpoint (its later outputs must be replaced, not kept).
+    REQUIRE(run(coarse + " --end-us 14 --output \"" + b + "\" --checkpoint \"" + ckpt + "\" --checkpoint-at-us 9", dir,
+                log) == 0);
+    REQUIRE(run(coarse + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) == 0);
+    INFO(log);
+    for (const char* f : {"series.csv", "snapshots/times.csv", "snapshots/particles.pvd", "snapshots/particles_000002.vtp",
+                          "snapshots/map_0002.csv"})
+        CHECK(slurp(fs::path(a) / f) == slurp(fs::path(b) / f));
+    // The summaries agree but for the wall time.
+    auto sa = read_csv(fs::path(a) / "summary.csv"), sb = read_csv(fs::path(b) / "summary.csv");
+    REQUIRE(sa.rows.size() == 1);
+    REQUIRE(sb.rows.size() == 1);
+    for (std::size_t i = 0; i < sa.columns.size(); ++i)
+        if (sa.columns[i] != "wall_s") CHECK(sa.rows[0][i] == sb.rows[0][i]);
+
+    // A restart with another flag than the original run's is refused, naming it.
+    CHECK(run(coarse + " --velocity 250 --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(log.find("velocity_m_s") != std::string::npos);
+    // A truncated checkpoint is refused, never loaded in part.
+    const std::string bytes = slurp(ckpt);
+    std::ofstream(ckpt, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size() / 2));
+    CHECK(run(coarse + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(log.find("run.ckpt") != std::string::npos);
+    CHECK(log.find("truncated") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+#endif
