@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Results must not depend on the number of threads: every scatter and reduction runs in a
-// fixed order, so 1 and 2 threads give bitwise identical particle states.
+// fixed order, so 1 and 2 threads give bitwise identical particle states. The scatter runs in
+// parallel over slabs of the grid (solver.hpp, for_each_particle_by_slab), so the scenes below
+// cover each scheme, single- and multi-field grids, walls and periodic axes, and sorting.
 #include <gimlet/gimlet.hpp>
 
 #include <catch2/catch.hpp>
@@ -11,11 +13,37 @@ namespace {
 
 using S = gimlet::space<2>;
 
-auto run(int threads) {
+template <class Column>
+bool bitwise_equal(const Column& a, const Column& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+}
+
+template <class Solver>
+void check_same(const Solver& one, const Solver& two) {
+    REQUIRE(one.steps() == two.steps());
+    REQUIRE(one.particles().size() > 4096);  // above the size at which loops go parallel
+    CHECK(bitwise_equal(one.particles().template column<gimlet::fields::position>(),
+                        two.particles().template column<gimlet::fields::position>()));
+    CHECK(bitwise_equal(one.particles().template column<gimlet::fields::velocity>(),
+                        two.particles().template column<gimlet::fields::velocity>()));
+    CHECK(bitwise_equal(one.particles().template column<gimlet::fields::stress>(),
+                        two.particles().template column<gimlet::fields::stress>()));
+    CHECK(bitwise_equal(one.particles().template column<gimlet::fields::deformation_gradient>(),
+                        two.particles().template column<gimlet::fields::deformation_gradient>()));
+    CHECK(bitwise_equal(one.particles().template column<gimlet::fields::specific_internal_energy>(),
+                        two.particles().template column<gimlet::fields::specific_internal_energy>()));
+    // The run did something: the bodies are in contact and stressed.
+    double max_stress = 0;
+    for (const auto& s : one.particles().template column<gimlet::fields::stress>()) max_stress = std::max(max_stress, s.norm());
+    CHECK(max_stress > 10.0);
+}
+
+template <class Contact = gimlet::contact::single_field>
+auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0) {
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector::Zero();
     gs.upper = S::vector::Ones();
-    gs.cell = 0.0125;  // 6656 particles: above the size at which loops go parallel
+    gs.cell = 0.0125;  // 6656 particles
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
     gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
     const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);
@@ -23,32 +51,59 @@ auto run(int threads) {
     sc.add_body(gimlet::scene::ball<S>(S::vector(0.7, 0.7), 0.2), mat, S::vector(-0.5, -0.5));
     gimlet::solver_options<S> opt;
     opt.threads = threads;
-    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(sc, opt);
+    opt.scheme = scheme;
+    opt.sort_interval = sort_interval;
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, Contact> sol(sc, opt);
     sol.run_until(0.2);  // well into the impact
     return sol;
 }
 
-template <class Column>
-bool bitwise_equal(const Column& a, const Column& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+// Two HMX blocks pressed together along y, periodic on both axes (they also meet across the
+// seam), with an odd number of slabs along the periodic last axis: the slab whose stencils wrap
+// onto the first gets a colour of its own.
+auto blocks(int threads, gimlet::update_scheme scheme) {
+    using material = gimlet::materials::hmx_material<>;
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(0.043, 0.043);  // 43 node rows along y: 21 slabs of 2 rows, the last of 3
+    gs.cell = 1e-3;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    gimlet::scene::scene<S, material> sc(gs);
+    const auto hmx = gimlet::materials::make_hmx();
+    // Touching at y = 21.5 mm and across the seam, so contact acts from the first step.
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(0.043, 0.0215)), hmx, S::vector(0.0, 300.0), 2,
+                "lower");
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0215), S::vector(0.043, 0.043)), hmx, S::vector(0.0, -300.0), 2,
+                "upper");
+    gimlet::solver_options<S> opt;
+    opt.threads = threads;
+    opt.scheme = scheme;
+    gimlet::solver<S, gimlet::shape::ugimp, material, gimlet::contact::distance> sol(sc, opt);
+    for (int n = 0; n < 60; ++n) sol.step(1e-8);
+    return sol;
 }
 
 }  // namespace
 
 TEST_CASE("results do not depend on the thread count", "[core][threads]") {
-    const auto one = run(1);
-    const auto two = run(2);
-    REQUIRE(one.steps() == two.steps());
-    REQUIRE(one.particles().size() > 4096);
-    CHECK(bitwise_equal(one.particles().column<gimlet::fields::position>(), two.particles().column<gimlet::fields::position>()));
-    CHECK(bitwise_equal(one.particles().column<gimlet::fields::velocity>(), two.particles().column<gimlet::fields::velocity>()));
-    CHECK(bitwise_equal(one.particles().column<gimlet::fields::stress>(), two.particles().column<gimlet::fields::stress>()));
-    CHECK(bitwise_equal(one.particles().column<gimlet::fields::deformation_gradient>(),
-                        two.particles().column<gimlet::fields::deformation_gradient>()));
-    CHECK(bitwise_equal(one.particles().column<gimlet::fields::specific_internal_energy>(),
-                        two.particles().column<gimlet::fields::specific_internal_energy>()));
-    // The run did something: the disks are in contact and stressed.
-    double max_stress = 0;
-    for (const auto& s : one.particles().column<gimlet::fields::stress>()) max_stress = std::max(max_stress, s.norm());
-    CHECK(max_stress > 10.0);
+    check_same(disks(1, gimlet::update_scheme::musl), disks(2, gimlet::update_scheme::musl));
+}
+
+TEST_CASE("results do not depend on the thread count: USL, USF", "[core][threads]") {
+    check_same(disks(1, gimlet::update_scheme::usl), disks(2, gimlet::update_scheme::usl));
+    check_same(disks(1, gimlet::update_scheme::usf), disks(2, gimlet::update_scheme::usf));
+}
+
+TEST_CASE("results do not depend on the thread count: multi-field contact", "[core][threads]") {
+    using gimlet::contact::bardenhagen;
+    check_same(disks<bardenhagen>(1, gimlet::update_scheme::musl), disks<bardenhagen>(2, gimlet::update_scheme::musl));
+}
+
+TEST_CASE("results do not depend on the thread count: sorting by cell", "[core][threads]") {
+    check_same(disks(1, gimlet::update_scheme::musl, 7), disks(2, gimlet::update_scheme::musl, 7));
+}
+
+TEST_CASE("results do not depend on the thread count: HMX, distance contact, periodic axes", "[core][threads]") {
+    check_same(blocks(1, gimlet::update_scheme::musl), blocks(2, gimlet::update_scheme::musl));
+    check_same(blocks(1, gimlet::update_scheme::usf), blocks(2, gimlet::update_scheme::usf));
 }

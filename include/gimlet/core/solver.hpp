@@ -19,6 +19,8 @@
 #include "gimlet/shape/concepts.hpp"
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -54,6 +56,14 @@ struct solver_options {
     /// OpenMP threads for the particle and node loops; 0 = the OpenMP default. Results do not
     /// depend on it: every reduction runs in a fixed order.
     int threads = 0;
+    /// Sort the particles by grid cell before every step whose number (solver::steps()) is a
+    /// multiple of this; 0 = never (the default). Particles that share nodes then sit close in
+    /// memory, which keeps the transfers cache-friendly once the material has mixed. Sorting
+    /// **permutes particle indices** (every field moves with its particle): an index held
+    /// across such a step (by an observer, say) then names another particle. It is
+    /// deterministic (a stable sort on the cell) and keyed on the step count, so a run resumed
+    /// with solver::resume_at sorts at the same steps as the uninterrupted run.
+    int sort_interval = 0;
 
     void validate() const {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
@@ -62,6 +72,21 @@ struct solver_options {
         require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
         for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
         require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");
+        require(sort_interval >= 0, "sort_interval (steps)", sort_interval, ">= 0 (0 = never sort)");
+    }
+};
+
+/// Where the wall-clock time of a solver's steps went (s, summed over its steps): see
+/// solver::timings(). Fused loops are counted where they end up.
+struct step_timings {
+    double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
+    double particle_to_grid = 0;   ///< clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
+    double grid_update = 0;        ///< nodal velocities, momentum update, walls
+    double contact = 0;            ///< multi-field contact at nodes shared by bodies
+    double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
+    double material_update = 0;    ///< velocity gradient, constitutive update, checks, next step's weights
+    [[nodiscard]] double total() const noexcept {
+        return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
     }
 };
 
@@ -112,6 +137,7 @@ public:
             mass_gradient_.assign(grid_.entries(), vector::Zero());
             reach_.assign(grid_.entries(), real(0));
         }
+        set_up_slabs();
     }
 
     /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
@@ -179,12 +205,17 @@ public:
         state_touched_ = true;
     }
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
+    /// Wall-clock time per phase of the steps so far (see docs/performance.md).
+    [[nodiscard]] const step_timings& timings() const noexcept { return timings_; }
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
+    // The same for loops over grid nodes, whose bodies cost a few nanoseconds each, some 30
+    // times less than a particle's: a team pays for itself only on large grids.
+    static constexpr std::ptrdiff_t node_parallel_threshold = 32 * parallel_threshold;
 
     // Where particle i's velocity field starts in the nodal arrays: its body's field with
     // multi-field contact, the only field otherwise (a compile-time zero).
@@ -258,155 +289,268 @@ private:
     }
 
     // ---- the step -----------------------------------------------------------------------
+    //
+    // The phases of PHYSICS.md section 1 are fused where their arithmetic allows it, so a step
+    // makes few passes over the particles and the nodes: one scatter (mass, momentum and, unless
+    // USF, forces), one node pass (v^n, momentum update, v^{n+1}), one gather (with MUSL's
+    // re-map scatter), one node pass for MUSL, and one particle pass that updates the material,
+    // checks the particle and computes its weights for the next step. Each quantity is computed
+    // with the same operations as in the unfused order; only the order in which a node sums its
+    // particles' contributions is the scatter's (see for_each_particle_by_slab).
 
     void advance(real dt) {
+        using clock = std::chrono::steady_clock;
+        auto mark = clock::now();
+        auto lap = [&mark](double& into) {
+            const auto now = clock::now();
+            into += std::chrono::duration<double>(now - mark).count();
+            mark = now;
+        };
         // State changed between steps (by the user or a restart) is checked before it spreads
         // through the grid, so a bad value is blamed on its own particle, not on a neighbour.
-        if (steps_ == 0 || state_touched_) check_particles();
+        if (steps_ == 0 || state_touched_ || !stencils_ready_) {
+            check_particles();
+            compute_stencils();
+        }
         state_touched_ = false;
-        compute_stencils();
-        grid_.clear();
-        map_mass_momentum();
+        stencils_ready_ = false;  // until this step's last pass has computed the next ones
+        if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
+        lap(timings_.sort);
         dt_ = dt;
+        const bool usf = options_.scheme == update_scheme::usf;
+        bucket_by_slab();
+        grid_.clear();
+        if (usf) scatter<false>();
+        else scatter<true>();
         if constexpr (multi_field) compute_reach();
-        nodal_velocity(grid_.velocity_old);
-        if (options_.scheme == update_scheme::usf) {
+        lap(timings_.particle_to_grid);
+        if (usf) {
+            nodal_velocity(grid_.velocity_old);
             grid_.velocity = grid_.velocity_old;
             grid_.apply_walls(grid_.velocity);
+            lap(timings_.grid_update);
             // The stress sees the same contact as the momentum update, or it would strain the
             // bodies through each other.
             if constexpr (multi_field) resolve_contact(false);
+            lap(timings_.contact);
             update_material_points(dt, grid_.velocity);
+            lap(timings_.material_update);
+            map_forces();
+            lap(timings_.particle_to_grid);
         }
-        map_forces();
-        update_grid_momentum(dt);
-        grid_to_particles(dt);
-        if (options_.scheme == update_scheme::musl) {
-            remap_momentum();
-            update_material_points(dt, grid_.velocity);
-        } else if (options_.scheme == update_scheme::usl) {
-            update_material_points(dt, grid_.velocity);
+        update_grid_momentum(dt, !usf);
+        lap(timings_.grid_update);
+        if constexpr (multi_field) resolve_contact(false);
+        lap(timings_.contact);
+        const bool musl = options_.scheme == update_scheme::musl;
+        grid_to_particles(dt, musl);
+        if (musl) {
+            // MUSL: the updated particle momenta mapped back to the grid (PHYSICS.md section 1,
+            // step 4), scattered by grid_to_particles.
+            nodal_velocity(grid_.velocity);
+            grid_.apply_walls(grid_.velocity);
+            lap(timings_.grid_to_particle);
+            if constexpr (multi_field) resolve_contact(true);
+            lap(timings_.contact);
+        } else {
+            lap(timings_.grid_to_particle);
         }
-        ++steps_;
-        time_ += dt;
-        check_particles();
+        finish_step(dt, !usf);
+        lap(timings_.material_update);
     }
 
-    // Weights at x^n, computed once and shared by every transfer of the step.
+    // Weights at x^n of every particle (after a change of state between steps; otherwise the
+    // previous step's last pass computed them).
     void compute_stencils() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
+        slab_of_.resize(particles_.size());
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t i = 0; i < n; ++i) {
-            const auto p = particles_[static_cast<std::size_t>(i)];
-            stencils_[static_cast<std::size_t>(i)].template compute_with<Sh>(
-                grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
+        for (std::ptrdiff_t i = 0; i < n; ++i) compute_stencil(static_cast<std::size_t>(i));
+    }
+
+    // The stencil of particle i, computed once and shared by every transfer of the step, and
+    // the slab its scatter belongs to.
+    void compute_stencil(std::size_t i) {
+        const auto p = particles_[i];
+        auto& st = stencils_[i];
+        st.template compute_with<Sh>(grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
+        const int row = st.offset[dim - 1][0] / grid_.stride(dim - 1);
+        slab_of_[i] = static_cast<std::uint32_t>(std::min(row / slab_rows_, slabs_ - 1));
+    }
+
+    // ---- deterministic parallel scatter ---------------------------------------------------
+    //
+    // The grid is cut along its last axis into slabs of slab_rows_ >= stencil - 1 node rows; a
+    // particle belongs to the slab of its stencil's first row. Its stencil then reaches at most
+    // into the next slab, so slabs two apart never share a node: all even slabs can scatter at
+    // once, then all odd ones (and, on a periodic axis with an odd slab count, the last slab,
+    // which wraps onto slab 0, alone). Within a slab, particles go in increasing index. Every
+    // node therefore sums its contributions in an order fixed by the grid and the particle
+    // order, whatever the thread count. (Colouring as in e.g. Gao et al. 2018, "GPU
+    // optimization of material point methods", section 4.2, on slabs instead of blocks.)
+
+    void set_up_slabs() {
+        const int rows = grid_.nodes(dim - 1);
+        slab_rows_ = std::max(Sh::stencil - 1, 1);
+        // The last slab takes the remainder (between slab_rows_ and 2 slab_rows_ - 1 rows), so
+        // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
+        slabs_ = std::max(1, rows / slab_rows_);
+        for (auto& c : colour_slabs_) c.clear();
+        for (int s = 0; s < slabs_; ++s) {
+            const bool wraps_onto_first = grid_.periodic(dim - 1) && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
+            colour_slabs_[wraps_onto_first ? 2 : std::size_t(s % 2)].push_back(s);
         }
     }
 
-    // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p (PHYSICS.md section 1, step 1). Serial scatter:
-    // the summation order is the particle order, whatever the thread count.
-    void map_mass_momentum() {
+    // Particle indices grouped by slab, increasing within each (a stable counting sort).
+    void bucket_by_slab() {
+        const std::size_t n = particles_.size();
+        slab_start_.assign(std::size_t(slabs_) + 1, 0);
+        for (std::size_t i = 0; i < n; ++i) ++slab_start_[slab_of_[i] + 1];
+        for (std::size_t s = 0; s < std::size_t(slabs_); ++s) slab_start_[s + 1] += slab_start_[s];
+        slab_cursor_.assign(slab_start_.begin(), slab_start_.end() - 1);
+        slab_particles_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) slab_particles_[slab_cursor_[slab_of_[i]]++] = i;
+    }
+
+    // f(i) for every particle, slab by slab and colour by colour (see above). f must not throw.
+    template <class F>
+    void for_each_particle_by_slab(F&& f) {
+        [[maybe_unused]] const bool parallel = std::ptrdiff_t(particles_.size()) >= parallel_threshold;
+        GIMLET_OMP(parallel num_threads(threads()) if (parallel))
+        for (const auto& slabs : colour_slabs_) {
+            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
+            GIMLET_OMP(for schedule(dynamic, 1))
+            for (std::ptrdiff_t j = 0; j < count; ++j) {
+                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+            }
+        }
+    }
+
+    // ---- transfers ----------------------------------------------------------------------
+
+    // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
+    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1) in one pass.
+    template <bool Forces>
+    void scatter() {
         const auto& m = particles_.template column<fields::mass>();
         const auto& v = particles_.template column<fields::velocity>();
         if constexpr (multi_field) std::fill(mass_gradient_.begin(), mass_gradient_.end(), vector::Zero());
-        for (std::size_t i = 0; i < particles_.size(); ++i) {
+        const vector b = options_.body_force.template cast<real>();
+        const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
+        for_each_particle_by_slab([&](std::size_t i) {
             const real mp = m[i];
             const vector mv = mp * v[i];
             const std::size_t base = field_base(i);
+            matrix vs = matrix::Zero();
+            vector mb = vector::Zero();
+            if constexpr (Forces) {
+                vs = current_volume(particles_[i]) * particles_.template column<fields::stress>()[i];
+                mb = mp * b;
+                if constexpr (store_type::template has<fields::external_acceleration>)
+                    mb += mp * particles_.template column<fields::external_acceleration>()[i];
+            }
             stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
-                grid_.mass[base + node] += w * mp;
-                grid_.momentum[base + node] += w * mv;
+                const std::size_t e = base + node;
+                grid_.mass[e] += w * mp;
+                grid_.momentum[e] += w * mv;
                 // G is the gradient with respect to the particle position, so sum m_p G_ip points
                 // out of the body (PHYSICS.md section 3; Bardenhagen et al. 2000, eq. 16).
-                if constexpr (multi_field) mass_gradient_[base + node] += mp * g;
-                else (void)g;
+                if constexpr (multi_field) mass_gradient_[e] += mp * g;
+                if constexpr (Forces) {
+                    grid_.force[e] -= vs * g;
+                    if (loaded) grid_.force[e] += w * mb;
+                } else {
+                    (void)g;
+                }
             });
-        }
+        });
     }
 
-    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1).
+    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1), after USF's
+    // stress update.
     void map_forces() {
         const auto& m = particles_.template column<fields::mass>();
         const auto& sig = particles_.template column<fields::stress>();
         const vector b = options_.body_force.template cast<real>();
-        const bool gravity = !b.isZero();
-        for (std::size_t i = 0; i < particles_.size(); ++i) {
+        const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
+        for_each_particle_by_slab([&](std::size_t i) {
             const matrix vs = current_volume(particles_[i]) * sig[i];
             vector mb = m[i] * b;
             if constexpr (store_type::template has<fields::external_acceleration>)
                 mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
-            const bool loaded = gravity || store_type::template has<fields::external_acceleration>;
             const std::size_t base = field_base(i);
             stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
                 grid_.force[base + node] -= vs * g;
                 if (loaded) grid_.force[base + node] += w * mb;
             });
-        }
+        });
     }
 
     // v_i = (mv)_i / m_i where m_i is above the cut-off, else 0 (PHYSICS.md section 1, step 2).
     void nodal_velocity(std::vector<vector>& out) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             out[i] = grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
         }
     }
 
-    // (mv)_i += dt f_i, then boundary conditions (PHYSICS.md section 1, step 2).
-    void update_grid_momentum(real dt) {
+    // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), (mv)_i += dt f_i,
+    // v_i^{n+1} = (mv)_i / m_i, then the walls (PHYSICS.md section 1, step 2).
+    void update_grid_momentum(real dt, bool with_old_velocity) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
+            const bool massive = grid_.mass[i] > mass_cutoff_;
+            if (with_old_velocity)
+                grid_.velocity_old[i] = massive ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
             grid_.momentum[i] += dt * grid_.force[i];
-            grid_.velocity[i] =
-                grid_.mass[i] > mass_cutoff_ ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
+            grid_.velocity[i] = massive ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
         }
         grid_.apply_walls(grid_.velocity);
-        if constexpr (multi_field) resolve_contact(false);
     }
 
     // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
-    // (PHYSICS.md section 1, step 3).
-    void grid_to_particles(real dt) {
-        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    // (PHYSICS.md section 1, step 3). With remap (MUSL), each particle's new momentum is
+    // scattered back to the grid in the same pass (PHYSICS.md section 1, step 4): the gather
+    // reads grid velocities only and the scatter writes grid momenta only.
+    void grid_to_particles(real dt, bool remap) {
         auto& x = particles_.template column<fields::position>();
         auto& v = particles_.template column<fields::velocity>();
+        const auto& m = particles_.template column<fields::mass>();
         const real alpha = real(options_.pic_fraction);
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
+        auto update = [&](std::size_t i) {
             vector v_pic = vector::Zero(), dv = vector::Zero();
             const std::size_t base = field_base(i);
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+            const auto& st = stencils_[i];
+            st.for_each([&](std::size_t node, real w, const vector&) {
                 v_pic += w * grid_.velocity[base + node];
                 dv += w * (grid_.velocity[base + node] - grid_.velocity_old[base + node]);
             });
             x[i] += dt * v_pic;
             v[i] = (real(1) - alpha) * (v[i] + dv) + alpha * v_pic;
+            if (remap) {
+                const vector mv = m[i] * v[i];
+                st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
+            }
+        };
+        if (remap) {
+            std::fill(grid_.momentum.begin(), grid_.momentum.end(), vector::Zero());
+            for_each_particle_by_slab(update);
+        } else {
+            const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+            for (std::ptrdiff_t k = 0; k < n; ++k) update(static_cast<std::size_t>(k));
         }
     }
 
-    // MUSL: the updated particle momenta mapped back to the grid (PHYSICS.md section 1, step 4).
-    void remap_momentum() {
-        std::fill(grid_.momentum.begin(), grid_.momentum.end(), vector::Zero());
-        const auto& m = particles_.template column<fields::mass>();
-        const auto& v = particles_.template column<fields::velocity>();
-        for (std::size_t i = 0; i < particles_.size(); ++i) {
-            const vector mv = m[i] * v[i];
-            const std::size_t base = field_base(i);
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
-        }
-        nodal_velocity(grid_.velocity);
-        grid_.apply_walls(grid_.velocity);
-        if constexpr (multi_field) resolve_contact(true);
-    }
-
-    // L_p = sum v_i (x) G_ip; F update; then the constitutive policies
-    // (PHYSICS.md section 1, step 5 and section 4: sigma = s - (P + q) I).
+    // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (PHYSICS.md
+    // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
     void update_material_points(real dt, const std::vector<vector>& vg) {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         std::ptrdiff_t failed = n;
@@ -431,13 +575,72 @@ private:
         gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, steps_, double(time_));
     }
 
+    // The step's last particle pass: the constitutive update from the grid velocities (MUSL,
+    // USL), then what check_particles does (wrap, stop on a broken particle), then the weights
+    // for the next step. A material error is reported before a failed check, each for the
+    // lowest-numbered particle, as when the passes were separate.
+    void finish_step(real dt, bool update_materials) {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        auto& x = particles_.template column<fields::position>();
+        std::ptrdiff_t failed = n, first_bad = n;
+        std::exception_ptr error;
+        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            if (update_materials) {
+                try {
+                    update_material_point(i, dt, grid_.velocity);
+                } catch (...) {
+                    GIMLET_OMP(critical(gimlet_material_error))
+                    if (k < failed) failed = k, error = std::current_exception();
+                    continue;
+                }
+            }
+            grid_.wrap(x[i]);
+            if (!healthy(i)) {
+                first_bad = std::min(first_bad, k);
+                continue;
+            }
+            compute_stencil(i);
+        }
+        if (error) std::rethrow_exception(error);
+        ++steps_;
+        time_ += dt;
+        if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+        stencils_ready_ = true;
+    }
+
+    // ---- sorting ------------------------------------------------------------------------
+
+    // Stable counting sort of the particles on the first node of their stencil (a cell of the
+    // grid), applied to every field and to the stencils.
+    void sort_by_cell() {
+        const std::size_t n = particles_.size(), cells = grid_.size();
+        std::vector<std::size_t> start(cells + 1, 0), order(n);
+        auto key = [&](std::size_t i) {
+            int flat = 0;
+            for (int d = 0; d < dim; ++d) flat += stencils_[i].offset[d][0];
+            return static_cast<std::size_t>(flat);
+        };
+        for (std::size_t i = 0; i < n; ++i) ++start[key(i) + 1];
+        for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+        for (std::size_t i = 0; i < n; ++i) order[start[key(i)]++] = i;
+        auto permute = [&](auto& column) {
+            auto old = column;
+            for (std::size_t k = 0; k < n; ++k) column[k] = old[order[k]];
+        };
+        particles_.for_each_column([&](auto, auto& column) { permute(column); });
+        permute(stencils_);
+        permute(slab_of_);
+    }
+
     // ---- multi-field contact ------------------------------------------------------------
 
     // Each body's furthest particle centre along its own outward normal at every node its
     // particles map to (contact::node_view::reach), from the positions at the start of the step.
     void compute_reach() {
         std::fill(reach_.begin(), reach_.end(), -std::numeric_limits<real>::infinity());
-        for (std::size_t i = 0; i < particles_.size(); ++i) {
+        for_each_particle_by_slab([&](std::size_t i) {
             const std::size_t base = field_base(i);
             stencils_[i].for_each_offset(grid_.cell(), [&](std::size_t node, const vector& r) {
                 const vector& grad = mass_gradient_[base + node];
@@ -445,7 +648,7 @@ private:
                 if (!(len > real(0))) return;
                 reach_[base + node] = std::max(reach_[base + node], r.dot(grad) / len);
             });
-        }
+        });
     }
 
     // At every node shared by two or more bodies, let the contact policy correct the bodies'
@@ -498,6 +701,16 @@ private:
         if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
     }
 
+    // What problem() tests, without building its message (it runs for every particle and step).
+    [[nodiscard]] bool healthy(std::size_t i) const {
+        const auto p = particles_[i];
+        const auto& x = p.template get<fields::position>();
+        return x.allFinite() && p.template get<fields::velocity>().allFinite() &&
+               p.template get<fields::stress>().allFinite() &&
+               std::isfinite(p.template get<fields::specific_internal_energy>()) &&
+               p.template get<fields::deformation_gradient>().determinant() > 0 && grid_.inside(x);
+    }
+
     [[nodiscard]] std::string problem(std::size_t i) const {
         const auto p = particles_[i];
         const auto& x = p.template get<fields::position>();
@@ -529,6 +742,14 @@ private:
     std::vector<M> materials_;
     store_type particles_;
     std::vector<stencil_type> stencils_;
+    bool stencils_ready_ = false;  // stencils_ hold the weights at the current positions
+    // The scatter's slabs (see for_each_particle_by_slab): each particle's slab, the particles
+    // of each slab, and the slabs of each colour.
+    int slab_rows_ = 1, slabs_ = 1;
+    std::vector<std::uint32_t> slab_of_;
+    std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
+    std::array<std::vector<int>, 3> colour_slabs_;
+    step_timings timings_;
     real mass_cutoff_ = 0;
     bool state_touched_ = false;
     C contact_;

@@ -33,10 +33,8 @@ struct stencil {
             int first = 0;
             Shape::weights(xc, half_width[d], first, w[d].data(), dw[d].data());
             local[d] = xc - real(first);
-            for (int a = 0; a < W; ++a) {
-                offset[d][a] = g.axis_offset(d, first + a);
-                dw[d][a] *= g.inv_cell();
-            }
+            g.template axis_offsets<W>(d, first, offset[d].data());
+            for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
         }
     }
 

@@ -29,14 +29,17 @@ inline constexpr int gimp_stencil = 3;
 /// Branch by branch: a < l has t = 2l, p = l - a; the linear branch t = 2l, p = 0; the outer
 /// branch t = 1 + l - a, p = 0; beyond the support t = p = 0, so the weight and its derivative
 /// are exact zeros there, and every term is non-negative wherever p = 0.
+/// `inv_l` is 1/l, computed once per particle and axis: the divisions by l were most of the cost
+/// of the weights (the stencil's 3 nodes x 4 divisions per axis).
 /// \pre 0 < l <= 1/2 (the branches above only order that way for l <= 1/2).
 template <class Real>
-inline void gimp_kernel(Real r, Real l, Real& w, Real& dw) noexcept {
+inline void gimp_kernel(Real r, Real l, Real inv_l, Real& w, Real& dw) noexcept {
     const Real a = std::abs(r);
     const Real t = std::clamp(1 + l - a, Real(0), 2 * l);
     const Real p = std::max(Real(0), l - a);
-    w = t * t / (4 * l) + std::max(Real(0), 1 - l - a) - p * p / (2 * l);
-    dw = std::copysign(Real(1), r) * (p / l - t / (2 * l));
+    const Real half_inv_l = Real(0.5) * inv_l;
+    w = t * t * (Real(0.5) * half_inv_l) + std::max(Real(0), 1 - l - a) - p * p * half_inv_l;
+    dw = std::copysign(Real(1), r) * (p * inv_l - t * half_inv_l);
 }
 
 /// GIMP weights of a particle at `x` (cell units) for its 3-node stencil; see the Shape concept.
@@ -49,9 +52,10 @@ template <class Real>
 inline void gimp_weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept {
     l = std::clamp(l, std::numeric_limits<Real>::min(), Real(0.5));
     const Real offset = locate<gimp_stencil>(x, first);
+    const Real inv_l = Real(1) / l;
     // Node first + a sits at signed distance x - (first + a) = offset + 1 - a.
     for (int a = 0; a < gimp_stencil; ++a) {
-        gimp_kernel(offset + Real(1 - a), l, w[a], dw[a]);
+        gimp_kernel(offset + Real(1 - a), l, inv_l, w[a], dw[a]);
     }
 }
 
