@@ -40,6 +40,8 @@ struct settings {
     double end = 40e-6;         // s
     double sample_every = 0.1e-6;    // s, series.csv interval
     double snapshot_every = 4e-6;    // s, particle snapshots (0: none)
+    // s after the nominal contact: more snapshots at these times (the paper's figure times)
+    std::vector<double> snapshots_after_contact;
     double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
     int threads = 0;
 };
@@ -68,6 +70,12 @@ inline void validate(const settings& s) {
     gimlet::require(std::isfinite(s.snapshot_every) && s.snapshot_every >= 0, "snapshot interval (s)",
                     s.snapshot_every, ">= 0 (0 = none)");
     gimlet::require_positive("hot-spot radius (m)", s.hot_spot_radius);
+    for (std::size_t i = 0; i < s.snapshots_after_contact.size(); ++i) {
+        const double t = s.snapshots_after_contact[i];
+        const double before = i ? s.snapshots_after_contact[i - 1] : -contact_time(s);
+        gimlet::require(std::isfinite(t) && t >= before && t <= 1e-3, "snapshot time after contact (s)", t,
+                        "ascending, from -(gap / 2v) (the start of the run) to 1e-3");
+    }
     gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
 }
 
@@ -101,6 +109,9 @@ struct cavity_state {
     double axial_chord = 0;       // m
     double lateral_chord = 0;     // m: the widest horizontal chord across the axial one
     double closing_speed = 0;     // m/s: the axial walls' approach speed (0 once closed)
+    // m/s: the upstream wall's (the one facing the impact) speed towards the downstream wall:
+    // the paper's jet speed
+    double upstream_speed = 0;
     double centre_y = 0;          // m: middle of the axial chord (last seen while open)
 };
 
@@ -151,6 +162,8 @@ public:
                 if (!axial.open) continue;
                 c.axial_chord = axial.length();
                 c.closing_speed = axial.closing_speed();
+                // The lower block is hit from above: its cavity's upstream wall is the upper one.
+                c.upstream_speed = b == 0 ? -axial.upper_wall_velocity : axial.lower_wall_velocity;
                 // The widest of five horizontal chords spread along the axial one: a jet leaves a
                 // crescent that is wide near the far wall but narrow at the chord's middle.
                 for (int k = 1; k <= 5; ++k) {
@@ -192,6 +205,10 @@ struct summary {
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
     // part of the heating reverses on release); what stays is plastic work and shock entropy.
     double final_hot_spot = 0;
+    // K: at the first sample at least settle_time after the first cavity closes (-1 if none):
+    // the jet's landing has decompressed by then, so this is the hot spot that stays.
+    static constexpr double settle_time = 5e-6;
+    double settled_hot_spot = -1;
     // Asymmetric collapse (docs/reproduction.md): a cavity's axial chord closes (the upstream
     // wall reaches the downstream one: the chord falls below closed_fraction of 2R) while, at the last sample before, the cavity was more
     // than twice as wide across as along its axis. A cavity shrinking evenly keeps the ratio
@@ -213,6 +230,7 @@ struct summary {
         f("max_temperature", max_temperature);
         f("t_hot_spot", t_hot_spot);
         f("final_hot_spot", final_hot_spot);
+        f("settled_hot_spot", settled_hot_spot);
         for (int b = 0; b < 2; ++b) {
             const std::string k = "_" + std::to_string(b);
             f("asymmetric" + k, asymmetric[b]);
@@ -240,6 +258,8 @@ struct summary {
             if (closure[b] < 0) max_wall_relative_velocity = std::max(max_wall_relative_velocity, r.cavity[b].closing_speed);
         if (r.hot_spot > max_hot_spot) max_hot_spot = r.hot_spot, t_hot_spot = r.time;
         final_hot_spot = r.hot_spot;
+        const double closed = closure[0] < 0 ? closure[1] : (closure[1] < 0 ? closure[0] : std::min(closure[0], closure[1]));
+        if (settled_hot_spot < 0 && closed >= 0 && r.time >= closed + settle_time) settled_hot_spot = r.hot_spot;
         max_temperature = std::max(max_temperature, r.max_temperature);
         for (int b = 0; b < 2 && s.radius > 0; ++b) {
             if (closure[b] >= 0) continue;

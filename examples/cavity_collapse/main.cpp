@@ -4,6 +4,7 @@
 //
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
+//                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.5] [--threads 0] [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -19,12 +20,14 @@
 #include "common/cli.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <sstream>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -39,7 +42,8 @@ void write_header(std::ostream& os) {
     os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,"
           "hotspot_temperature_K,hotspot_x_mm,hotspot_y_mm,wall_relative_velocity_m_s,"
           "lower_cavity_open,lower_axial_chord_mm,lower_lateral_chord_mm,lower_closing_speed_m_s,"
-          "upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,upper_closing_speed_m_s\n";
+          "lower_upstream_wall_speed_m_s,upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,"
+          "upper_closing_speed_m_s,upper_upstream_wall_speed_m_s\n";
 }
 
 void write_row(std::ostream& os, const sample& r, const settings& s) {
@@ -48,7 +52,7 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
        << r.hot_spot_centre[1] * 1e3 << ',' << r.wall_relative_velocity();
     for (const auto& c : r.cavity)
         os << ',' << int(c.open) << ',' << c.axial_chord * 1e3 << ',' << c.lateral_chord * 1e3 << ','
-           << c.closing_speed;
+           << c.closing_speed << ',' << c.upstream_speed;
     os << '\n';
 }
 
@@ -81,6 +85,20 @@ struct checkpointer {
         if (done || double(so.time()) < at) return;
         done = true;
         save(double(so.time()));
+    }
+};
+
+// Calls f at the first step at or after each listed time (s), once per step.
+template <class F>
+struct listed_times {
+    std::vector<double> at;
+    std::size_t next;
+    F f;
+    template <class Solver>
+    void maybe_call(const Solver& so) {
+        if (next >= at.size() || double(so.time()) < at[next]) return;
+        while (next < at.size() && double(so.time()) >= at[next]) ++next;
+        f(so);
     }
 };
 
@@ -132,6 +150,7 @@ int run(const settings& s, const run_files& io) {
     const auto pvd_path = out / "snapshots" / "particles.pvd";
     std::optional<gimlet::io::pvd_writer> pvd;
     double next_sample = 0, next_snapshot = 0, last_sample = -1;
+    std::size_t listed_next = 0;
 
     // What a checkpoint keeps besides the particles: where each output stands, the summary so
     // far, and the flags that must not change on a restart.
@@ -174,6 +193,7 @@ int run(const settings& s, const run_files& io) {
         next_sample = value_of(v, "next_sample_s", io.restart);
         next_snapshot = value_of(v, "next_snapshot_s", io.restart);
         last_sample = value_of(v, "last_sample_s", io.restart);
+        listed_next = std::size_t(value_of(v, "next_listed_snapshot", io.restart));
         mon.visit([&](const std::string& k, auto& x) {
             x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "monitor." + k, io.restart));
         });
@@ -203,9 +223,7 @@ int run(const settings& s, const run_files& io) {
         last_sample = double(so.time());
     };
     auto samples = gimlet::diagnostics::every_time(s.sample_every, take_sample);
-    auto snapshots = gimlet::diagnostics::every_time(s.snapshot_every > 0 ? s.snapshot_every : 2 * s.end,
-                                                     [&](const auto& so) {
-        if (s.snapshot_every <= 0) return;
+    auto write_snapshot = [&](const auto& so) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);
         write_map(out / "snapshots" / name, so);
@@ -213,7 +231,13 @@ int run(const settings& s, const run_files& io) {
         times << snapshot << ',' << double(so.time()) * 1e6 << ',' << (double(so.time()) - contact_time(s)) * 1e6
               << '\n';
         ++snapshot;
+    };
+    auto snapshots = gimlet::diagnostics::every_time(s.snapshot_every > 0 ? s.snapshot_every : 2 * s.end,
+                                                     [&](const auto& so) {
+        if (s.snapshot_every > 0) write_snapshot(so);
     });
+    listed_times listed{{}, listed_next, write_snapshot};
+    for (double t : s.snapshots_after_contact) listed.at.push_back(contact_time(s) + t);
     if (!io.restart.empty()) samples.resume(next_sample), snapshots.resume(next_snapshot);
     checkpointer ckpt{[&](double t) {
                           series.flush(), times.flush();
@@ -221,6 +245,8 @@ int run(const settings& s, const run_files& io) {
                           v["next_sample_s"] = samples.next();
                           v["next_snapshot_s"] = snapshots.next();
                           v["last_sample_s"] = last_sample;
+                          v["next_listed_snapshot"] = double(listed.next);
+                          v["listed_snapshots"] = double(listed.at.size());
                           gimlet::io::save_checkpoint(io.checkpoint, sol, v);
                           std::printf("  checkpoint at %.3f us: %s\n", t * 1e6, io.checkpoint.string().c_str());
                           std::fflush(stdout);
@@ -228,8 +254,8 @@ int run(const settings& s, const run_files& io) {
                       io.checkpoint_at, io.checkpoint.empty() || double(sol.time()) >= io.checkpoint_at};
     gimlet::diagnostics::progress bar(std::cerr, s.end);
     const auto start = std::chrono::steady_clock::now();
-    if (io.quiet) sol.run_until(s.end, samples, snapshots, ckpt);
-    else sol.run_until(s.end, samples, snapshots, ckpt, bar);
+    if (io.quiet) sol.run_until(s.end, samples, snapshots, listed, ckpt);
+    else sol.run_until(s.end, samples, snapshots, listed, ckpt, bar);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
     series.close();
@@ -239,14 +265,14 @@ int run(const settings& s, const run_files& io) {
     std::ofstream su(out / "summary.csv");
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_hotspot_temperature_K,"
-          "t_hotspot_us,final_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
+          "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
        << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
        << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_hot_spot << ','
-       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.max_temperature << ','
+       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << '\n';
     su.close();
@@ -255,8 +281,10 @@ int run(const settings& s, const run_files& io) {
     std::printf("  %llu steps in %.1f s\n", static_cast<unsigned long long>(sol.steps()), wall);
     std::printf("  D_max %.3f mm at %.2f us; secondary impact at %.2f us\n", sum.D_max * 1e3, us(sum.t_D_max),
                 us(sum.secondary_impact));
-    std::printf("  max relative wall velocity %.0f m/s; hot spot peak %.1f K, at the end %.1f K (hottest particle %.1f K)\n",
-                sum.max_wall_relative_velocity, sum.max_hot_spot, sum.final_hot_spot, sum.max_temperature);
+    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after closure %.1f K, at the end "
+                "%.1f K (hottest particle %.1f K)\n",
+                sum.max_wall_relative_velocity, sum.max_hot_spot, sum.settled_hot_spot, sum.final_hot_spot,
+                sum.max_temperature);
     if (s.radius > 0)
         for (int b = 0; b < 2; ++b)
             std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",
@@ -279,7 +307,7 @@ int main(int argc, char** argv) try {
     example::cli args(static_cast<int>(rest.size()), rest.data(),
                       "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
                       "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--hot-spot-radius R_mm] [--threads N] [--quiet] [--no-figures] [--output DIR] "
+                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--threads N] [--quiet] [--no-figures] [--output DIR] "
                       "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
     settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
@@ -292,6 +320,18 @@ int main(int argc, char** argv) try {
     s.sample_every = 1e-6 * args.real("sample-every-us", 0.1, 0.0, 100.0);
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
+    {
+        const std::string list = args.path("snapshots-after-contact-us");
+        std::stringstream ss(list);
+        for (std::string item; std::getline(ss, item, ',');) {
+            char* end = nullptr;
+            const double t = std::strtod(item.c_str(), &end);
+            if (end == item.c_str() || *end != '\0' || !std::isfinite(t))
+                throw std::invalid_argument("--snapshots-after-contact-us = " + list +
+                                            " is invalid; valid: comma-separated times in us, e.g. 4,8,14");
+            s.snapshots_after_contact.push_back(1e-6 * t);
+        }
+    }
     s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
     run_files io;
     io.quiet = quiet;

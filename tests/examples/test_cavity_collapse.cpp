@@ -129,6 +129,8 @@ TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the unin
     const fs::path dir = fs::temp_directory_path() / "gimlet_test_cavity_restart";
     fs::remove_all(dir);
     const std::string a = (dir / "a").string(), b = (dir / "b").string(), ckpt = (dir / "b" / "run.ckpt").string();
+    // Periodic snapshots at 0, 8 and 16 us, and listed ones 1, 4 and 8 us after the contact at 6.67 us.
+    const std::string coarse = ::coarse + " --snapshots-after-contact-us 1,4,8";
     std::string log;
     REQUIRE(run(coarse + " --end-us 20 --output \"" + a + "\"", dir, log) == 0);
     // The interrupted run goes past its checkpoint (its later outputs must be replaced, not kept).
@@ -137,8 +139,11 @@ TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the unin
     REQUIRE(run(coarse + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) == 0);
     INFO(log);
     for (const char* f : {"series.csv", "snapshots/times.csv", "snapshots/particles.pvd", "snapshots/particles_000002.vtp",
-                          "snapshots/map_0002.csv"})
+                          "snapshots/particles_000005.vtp", "snapshots/map_0004.csv"})
+    {
+        REQUIRE(fs::file_size(fs::path(a) / f) > 0);
         CHECK(slurp(fs::path(a) / f) == slurp(fs::path(b) / f));
+    }
     // The summaries agree but for the wall time.
     auto sa = read_csv(fs::path(a) / "summary.csv"), sb = read_csv(fs::path(b) / "summary.csv");
     REQUIRE(sa.rows.size() == 1);
