@@ -82,7 +82,9 @@ inline void validate(const settings& s) {
 inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S> gs;
-    const double margin = 10e-3;  // room for the free ends to move
+    // Room for the free ends: the blocks rebound from each other at up to about v, so a long
+    // run needs more than a short one (a particle leaving the grid stops the run).
+    const double margin = 5e-3 + s.velocity * s.end;
     gs.lower = S::vector(0.0, -margin);
     gs.upper = S::vector(width, 2 * height + gap + margin);
     gs.cell = s.cell;
