@@ -84,7 +84,7 @@ inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
     gimlet::grid_spec<S> gs;
     // Room for the free ends: the blocks rebound from each other at up to about v, so a long
     // run needs more than a short one (a particle leaving the grid stops the run).
-    const double margin = 5e-3 + s.velocity * s.end;
+    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
     gs.lower = S::vector(0.0, -margin);
     gs.upper = S::vector(width, 2 * height + gap + margin);
     gs.cell = s.cell;
