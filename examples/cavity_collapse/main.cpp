@@ -15,10 +15,13 @@
 // (OUTPUT/snapshots/map_NNNN.csv) and, where python3 with matplotlib is available, PNG maps of
 // pressure and temperature and a plot of the series. docs/reproduction.md defines each quantity.
 // --checkpoint writes the run's state at --checkpoint-at-us; --restart resumes from it (give
-// the original run's other flags) and continues the same outputs.
+// the original run's other flags) and continues the same outputs. Exit status: 0 done, 1 bad
+// input or I/O error, 3 stopped by the library (numerical trouble; the outputs so far are
+// written and summary.csv's status says why).
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "common/cli.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -254,8 +257,17 @@ int run(const settings& s, const run_files& io) {
                       io.checkpoint_at, io.checkpoint.empty() || double(sol.time()) >= io.checkpoint_at};
     gimlet::diagnostics::progress bar(std::cerr, s.end);
     const auto start = std::chrono::steady_clock::now();
-    if (io.quiet) sol.run_until(s.end, samples, snapshots, listed, ckpt);
-    else sol.run_until(s.end, samples, snapshots, listed, ckpt, bar);
+    // A run the library stops (EOS singularity, inverted particle, ...) still leaves its series
+    // and a summary that says where it stopped; the exit status tells scripts it did not finish.
+    std::string status = "completed";
+    try {
+        if (io.quiet) sol.run_until(s.end, samples, snapshots, listed, ckpt);
+        else sol.run_until(s.end, samples, snapshots, listed, ckpt, bar);
+    } catch (const gimlet::numerical_error& e) {
+        status = std::string("stopped: ") + e.what();
+        std::replace(status.begin(), status.end(), ',', ';');  // one CSV cell
+        std::fprintf(stderr, "cavity_collapse: %s\n", e.what());
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
     series.close();
@@ -266,7 +278,7 @@ int run(const settings& s, const run_files& io) {
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
-          "upper_closure_us,upper_asymmetric\n";
+          "upper_closure_us,upper_asymmetric,status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
@@ -274,7 +286,7 @@ int run(const settings& s, const run_files& io) {
        << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_hot_spot << ','
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
-       << int(sum.asymmetric[1]) << '\n';
+       << int(sum.asymmetric[1]) << ',' << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
@@ -290,7 +302,7 @@ int run(const settings& s, const run_files& io) {
             std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",
                         sum.closure[b] < 0 ? "open at the end"
                                            : (sum.asymmetric[b] ? "closed asymmetrically (jet)" : "closed evenly"));
-    return 0;
+    return status == "completed" ? 0 : 3;
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ class Runner:
         if not (summary.exists() and stamp.exists() and stamp.read_text() == " ".join(flags)):
             out.mkdir(parents=True, exist_ok=True)
             done = subprocess.run([self.binary, *flags], capture_output=True, text=True)
-            if done.returncode != 0:
+            # 3: the library stopped the run (e.g. the EOS singularity); its outputs say where.
+            if done.returncode not in (0, 3):
                 sys.exit(f"sweep.py: {self.binary} {' '.join(flags)} failed:\n{done.stdout}{done.stderr}")
             stamp.write_text(" ".join(flags))
         with summary.open() as f:
@@ -62,7 +63,9 @@ class Runner:
         row["run"] = name
         print(f"  {sweep}: v = {v:g} m/s, R = {r:g} mm, cell {cell:g} mm: D_max {float(row['D_max_mm']):.3f} mm, "
               f"wall {float(row['max_wall_relative_velocity_m_s']):.0f} m/s, "
-              f"hot spot {float(row['max_hotspot_temperature_K']):.0f} K, {float(row['wall_s']):.0f} s", flush=True)
+              f"hot spot {float(row['max_hotspot_temperature_K']):.0f} K "
+              f"(settled {float(row['settled_hotspot_temperature_K']):.0f} K), {float(row['wall_s']):.0f} s"
+              + ("" if row["status"] == "completed" else f" [{row['status'][:60]}]"), flush=True)
         return row
 
     def many(self, sweep, cases):
