@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -22,6 +21,30 @@ using S3 = gimlet::space<3>;
 namespace fields = gimlet::fields;
 
 namespace {
+
+// The attributes of every element <tag ...> in `xml`, in order. (Parsed by hand: std::regex
+// trips a false -Wmaybe-uninitialized in GCC 12 under the sanitizers.)
+std::vector<std::map<std::string, std::string>> elements(const std::string& xml, const std::string& tag) {
+    std::vector<std::map<std::string, std::string>> out;
+    const std::string open = "<" + tag + " ";
+    for (auto at = xml.find(open); at != std::string::npos; at = xml.find(open, at + 1)) {
+        const auto end = xml.find('>', at);
+        REQUIRE(end != std::string::npos);
+        std::map<std::string, std::string> attrs;
+        std::size_t i = at + open.size();
+        while (true) {
+            const auto eq = xml.find("=\"", i);
+            if (eq == std::string::npos || eq > end) break;
+            const auto close = xml.find('"', eq + 2);
+            REQUIRE(close < end);
+            const auto name_start = xml.find_last_of(' ', eq) + 1;
+            attrs[xml.substr(name_start, eq - name_start)] = xml.substr(eq + 2, close - eq - 2);
+            i = close + 1;
+        }
+        out.push_back(std::move(attrs));
+    }
+    return out;
+}
 
 // The parts of a .vtp file this library writes: the XML header, every DataArray's attributes
 // by name, and the appended raw blocks (UInt64 byte count, then the bytes).
@@ -39,13 +62,7 @@ struct vtp_file {
         REQUIRE(at != std::string::npos);
         xml = text.substr(0, at + start.size() - 1);
         data_at = at + start.size();
-        const std::regex element("<DataArray ([^>]*?)/?>");
-        const std::regex attribute("(\\w+)=\"([^\"]*)\"");
-        for (std::sregex_iterator e(xml.begin(), xml.end(), element), end; e != end; ++e) {
-            std::map<std::string, std::string> attrs;
-            const std::string inside = (*e)[1];
-            for (std::sregex_iterator a(inside.begin(), inside.end(), attribute); a != end; ++a)
-                attrs[(*a)[1]] = (*a)[2];
+        for (auto attrs : elements(xml, "DataArray")) {
             REQUIRE(arrays.count(attrs["Name"]) == 0);
             arrays[attrs["Name"]] = attrs;
         }
@@ -78,10 +95,10 @@ struct vtp_file {
     }
 
     [[nodiscard]] std::string header_attribute(const std::string& element, const std::string& name) const {
-        std::smatch m;
-        const std::regex re("<" + element + " [^>]*\\b" + name + "=\"([^\"]*)\"");
-        REQUIRE(std::regex_search(xml, m, re));
-        return m[1];
+        const auto found = elements(xml, element);
+        REQUIRE(found.size() == 1);
+        REQUIRE(found[0].count(name) == 1);
+        return found[0].at(name);
     }
 };
 
@@ -184,7 +201,7 @@ TEST_CASE("vtp: a 2-D particle set reads back bit for bit, vectors padded to 3 c
     CHECK(f.values<float>("mass32")[2] == 0.0f);  // the subnormal double underflows in float32
 }
 
-TEST_CASE("vtp: 3-D vectors and tensors as they are; float32 points; no particles", "[io][vtk]") {
+TEST_CASE("vtp: 3-D vectors and tensors as they are, float32 points, no particles", "[io][vtk]") {
     io_test::scratch_dir dir("vtp3d");
     const auto particles = known_particles<store3>(4);
     gimlet::io::vtp_writer<store3> vtp(gimlet::io::precision::float32);
@@ -275,13 +292,15 @@ std::vector<std::pair<double, std::string>> pvd_entries(const std::filesystem::p
     CHECK(text.rfind("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n", 0) == 0);
     CHECK(text.ends_with("  </Collection>\n</VTKFile>\n"));
     std::vector<std::pair<double, std::string>> out;
-    const std::regex re("<DataSet timestep=\"([^\"]*)\" group=\"\" part=\"0\" file=\"([^\"]*)\"/>");
-    for (std::sregex_iterator m(text.begin(), text.end(), re), end; m != end; ++m) {
-        const std::string t = (*m)[1];
+    for (auto attrs : elements(text, "DataSet")) {
+        CHECK(attrs.size() == 4);
+        CHECK(attrs["group"].empty());
+        CHECK(attrs["part"] == "0");
+        const std::string& t = attrs["timestep"];
         double v = 0;
         const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
         CHECK(r.ptr == t.data() + t.size());
-        out.emplace_back(v, (*m)[2]);
+        out.emplace_back(v, attrs["file"]);
     }
     return out;
 }

@@ -288,7 +288,7 @@ struct parsed_checkpoint {
                                                         const std::filesystem::path& file) {
     const std::size_t size = bytes.size();
     const std::size_t magic_seen = std::min(size, sizeof checkpoint_magic);
-    if (std::memcmp(bytes.data(), checkpoint_magic, magic_seen) != 0)
+    if (magic_seen > 0 && std::memcmp(bytes.data(), checkpoint_magic, magic_seen) != 0)
         throw checkpoint_error(file, "not a gimlet checkpoint (wrong magic: its first bytes are not \"GIMLETCK\")");
     if (size < checkpoint_fixed_header + checksum_bytes)
         throw checkpoint_error(file, "truncated: " + std::to_string(size) + " bytes, shorter than the " +
