@@ -320,7 +320,7 @@ struct parsed_checkpoint {
                                          ", computed " + std::to_string(hash.value()) + ")");
 
     byte_reader body(bytes, size - checksum_bytes, file);
-    body.seek(24);
+    body.seek(24);  // past magic, version, byte-order mark and total size, all checked above
     parsed_checkpoint r;
     auto& info = r.info;
     info.dimension = int(body.value<std::uint32_t>());
