@@ -65,13 +65,13 @@ int main(int argc, char** argv) try {
     run<contact::distance>("full HMX (plasticity+heating+viscosity, distance contact)", materials::make_hmx(), cell, steps,
                            repeats, threads);
     run<contact::distance>("heating off", material<strength::von_mises, mg, thermal::none, viscosity::bulk>{
-                                              h.c.density, h.plastic(), h.eos(), {}, {}},
+                                              h.c.density, h.plastic(), h.eos(), {}, viscosity::bulk{}},
                            cell, steps, repeats, threads);
     run<contact::distance>("viscosity off", material<strength::von_mises, mg, heating, viscosity::none>{
                                                 h.c.density, h.plastic(), h.eos(), h.heat(), {}},
                            cell, steps, repeats, threads);
     run<contact::distance>("plasticity off", material<strength::linear_elastic, mg, heating, viscosity::bulk>{
-                                                 h.c.density, h.elastic(), h.eos(), h.heat(), {}},
+                                                 h.c.density, h.elastic(), h.eos(), h.heat(), viscosity::bulk{}},
                            cell, steps, repeats, threads);
     run<contact::single_field>("single-field contact", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::bardenhagen>("Bardenhagen multi-field contact", materials::make_hmx(), cell, steps, repeats, threads);

@@ -123,8 +123,9 @@ public:
     /// as axis_offset for each, with one wrap test per node instead of a division (positions
     /// are wrapped into the domain, so the division is only needed for a stencil starting
     /// outside it).
+    /// Returns the storage index of node `first`.
     template <int W>
-    void axis_offsets(int d, int first, int* out) const noexcept {
+    int axis_offsets(int d, int first, int* out) const noexcept {
         int i = first + offset_[d];
         if (periodic_[d]) {
             const int n = nodes_[d];
@@ -132,13 +133,15 @@ public:
                 i %= n;
                 i += i < 0 ? n : 0;
             }
+            const int storage = i;
             for (int a = 0; a < W; ++a) {
                 out[a] = i * stride_[d];
                 i = i + 1 == n ? 0 : i + 1;
             }
-        } else {
-            for (int a = 0; a < W; ++a) out[a] = (i + a) * stride_[d];
+            return storage;
         }
+        for (int a = 0; a < W; ++a) out[a] = (i + a) * stride_[d];
+        return i;
     }
     /// Distance between consecutive storage indices along axis d in the flat node index.
     [[nodiscard]] int stride(int d) const noexcept { return stride_[d]; }

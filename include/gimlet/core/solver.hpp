@@ -168,7 +168,7 @@ public:
     [[nodiscard]] real stable_time_step() const {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         real fastest = 0;
-        GIMLET_OMP(parallel for reduction(max : fastest) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(max : fastest) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
             const real c = wave_speed(p);
@@ -213,6 +213,12 @@ private:
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
+    // Particle loops hand out chunks of this many particles on demand rather than one fixed
+    // share per thread: on a machine where another process holds a core, the thread that runs
+    // takes over the chunks of the one that waits, instead of idling at the end of the loop.
+    // Every particle's result is independent of which thread runs it, so this costs no
+    // determinism.
+    static constexpr int particle_chunk = 512;
     // The same for loops over grid nodes, whose bodies cost a few nanoseconds each, some 30
     // times less than a particle's: a team pays for itself only on large grids.
     static constexpr std::ptrdiff_t node_parallel_threshold = 32 * parallel_threshold;
@@ -365,7 +371,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
         slab_of_.resize(particles_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) compute_stencil(static_cast<std::size_t>(i));
     }
 
@@ -375,13 +381,12 @@ private:
         const auto p = particles_[i];
         auto& st = stencils_[i];
         st.template compute_with<Sh>(grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
-        const int row = st.offset[dim - 1][0] / grid_.stride(dim - 1);
-        slab_of_[i] = static_cast<std::uint32_t>(std::min(row / slab_rows_, slabs_ - 1));
+        slab_of_[i] = static_cast<std::uint32_t>(std::min(st.last_row / slab_rows, slabs_ - 1));
     }
 
     // ---- deterministic parallel scatter ---------------------------------------------------
     //
-    // The grid is cut along its last axis into slabs of slab_rows_ >= stencil - 1 node rows; a
+    // The grid is cut along its last axis into slabs of slab_rows >= stencil - 1 node rows; a
     // particle belongs to the slab of its stencil's first row. Its stencil then reaches at most
     // into the next slab, so slabs two apart never share a node: all even slabs can scatter at
     // once, then all odd ones (and, on a periodic axis with an odd slab count, the last slab,
@@ -392,10 +397,9 @@ private:
 
     void set_up_slabs() {
         const int rows = grid_.nodes(dim - 1);
-        slab_rows_ = std::max(Sh::stencil - 1, 1);
-        // The last slab takes the remainder (between slab_rows_ and 2 slab_rows_ - 1 rows), so
+        // The last slab takes the remainder (between slab_rows and 2 slab_rows - 1 rows), so
         // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
-        slabs_ = std::max(1, rows / slab_rows_);
+        slabs_ = std::max(1, rows / slab_rows);
         for (auto& c : colour_slabs_) c.clear();
         for (int s = 0; s < slabs_; ++s) {
             const bool wraps_onto_first = grid_.periodic(dim - 1) && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
@@ -544,7 +548,7 @@ private:
             for_each_particle_by_slab(update);
         } else {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+            GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
             for (std::ptrdiff_t k = 0; k < n; ++k) update(static_cast<std::size_t>(k));
         }
     }
@@ -555,7 +559,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         std::ptrdiff_t failed = n;
         std::exception_ptr error;
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             try {
                 update_material_point(static_cast<std::size_t>(k), dt, vg);
@@ -584,7 +588,7 @@ private:
         auto& x = particles_.template column<fields::position>();
         std::ptrdiff_t failed = n, first_bad = n;
         std::exception_ptr error;
-        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             if (update_materials) {
@@ -640,11 +644,17 @@ private:
     // particles map to (contact::node_view::reach), from the positions at the start of the step.
     void compute_reach() {
         std::fill(reach_.begin(), reach_.end(), -std::numeric_limits<real>::infinity());
+        // |sum m_p G_ip| once per node, not once per particle and node.
+        gradient_norm_.resize(mass_gradient_.size());
+        const auto n = static_cast<std::ptrdiff_t>(mass_gradient_.size());
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k)
+            gradient_norm_[std::size_t(k)] = mass_gradient_[std::size_t(k)].norm();
         for_each_particle_by_slab([&](std::size_t i) {
             const std::size_t base = field_base(i);
             stencils_[i].for_each_offset(grid_.cell(), [&](std::size_t node, const vector& r) {
                 const vector& grad = mass_gradient_[base + node];
-                const real len = grad.norm();
+                const real len = gradient_norm_[base + node];
                 if (!(len > real(0))) return;
                 reach_[base + node] = std::max(reach_[base + node], r.dot(grad) / len);
             });
@@ -670,7 +680,7 @@ private:
                 ids_[j] = static_cast<std::uint32_t>(scratch_[j]);
                 m_[j] = grid_.mass[e];
                 p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
-                const real len = mass_gradient_[e].norm();
+                const real len = gradient_norm_[e];
                 n_[j] = len > real(0) ? vector(mass_gradient_[e] / len) : vector::Zero();
                 r_[j] = reach_[e];
             }
@@ -692,7 +702,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             grid_.wrap(x[i]);
@@ -745,7 +755,8 @@ private:
     bool stencils_ready_ = false;  // stencils_ hold the weights at the current positions
     // The scatter's slabs (see for_each_particle_by_slab): each particle's slab, the particles
     // of each slab, and the slabs of each colour.
-    int slab_rows_ = 1, slabs_ = 1;
+    static constexpr int slab_rows = std::max(Sh::stencil - 1, 1);
+    int slabs_ = 1;
     std::vector<std::uint32_t> slab_of_;
     std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
     std::array<std::vector<int>, 3> colour_slabs_;
@@ -757,7 +768,7 @@ private:
     // Multi-field contact only (empty otherwise): per field and node, the mass gradient and the
     // reach, plus scratch space for one node's bodies.
     std::vector<vector> mass_gradient_;
-    std::vector<real> reach_;
+    std::vector<real> reach_, gradient_norm_;
     std::vector<std::size_t> scratch_;
     std::vector<char> engaged_;
     std::vector<std::uint32_t> ids_;

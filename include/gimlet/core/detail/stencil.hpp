@@ -24,6 +24,7 @@ struct stencil {
     std::array<std::array<real, W>, dim> w;      ///< 1-D weights
     std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
     std::array<real, dim> local;                 ///< particle position from the first node (cells)
+    int last_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>
@@ -33,7 +34,7 @@ struct stencil {
             int first = 0;
             Shape::weights(xc, half_width[d], first, w[d].data(), dw[d].data());
             local[d] = xc - real(first);
-            g.template axis_offsets<W>(d, first, offset[d].data());
+            last_row = g.template axis_offsets<W>(d, first, offset[d].data());
             for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
         }
     }

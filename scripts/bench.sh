@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Build the benchmarks (`bench` preset) and run them all: throughput (the reference scene and
+# the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect, and
+# accuracy against time. CSVs and Markdown tables go to results/bench/, plots to
+# docs/perf_*.png (drawn with Debian's /usr/bin/python3, which has matplotlib).
+#
+#   scripts/bench.sh            the full run (about 20-30 minutes on an idle 2-core machine)
+#   scripts/bench.sh --quick    a smoke run of every benchmark (a minute)
+#
+# The machine's load average is recorded before and after each benchmark: timings on a busy
+# machine are not comparable, so check results/bench/load.txt before trusting a table.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+quick=0
+[ "${1:-}" = "--quick" ] && quick=1
+
+build="${GIMLET_BENCH_BUILD:-build/bench}"
+out="${GIMLET_BENCH_OUTPUT:-results/bench}"
+cmake --preset bench -B "$build" >/dev/null
+cmake --build "$build" -j2
+mkdir -p "$out"
+bin="$build/benchmarks"
+
+{
+    echo "date: $(date -u +%Y-%m-%dT%H:%MZ)"
+    echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores"
+    echo "memory: $(free -g | awk '/Mem:/ {print $2}') GiB"
+    echo "compiler: $(c++ --version | head -1)"
+    echo "flags: bench preset (-O3 -DNDEBUG, no -march=native), OpenMP"
+    echo "commit: $(git rev-parse --short HEAD)$(git diff --quiet HEAD -- include benchmarks || echo ' (modified)')"
+} > "$out/machine.txt"
+: > "$out/load.txt"
+load() { echo "$1: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"; }
+
+# OMP_WAIT_POLICY=passive: a waiting thread sleeps instead of spinning, which costs little on
+# an idle machine and avoids long stalls when another process holds a core.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+
+if [ "$quick" = 1 ]; then
+    ref_args=(--cell 2 --steps 10 --repeats 1)
+    sizes=(2 1)
+    eff_args=(--cell 4 --steps 5 --repeats 1)
+    acc_args=(--quick 1)
+else
+    ref_args=(--cell 0.5 --steps 1000 --repeats 3)
+    sizes=(2 1 0.5 0.25 0.125)
+    eff_args=(--cell 1 --steps 300 --repeats 5)
+    acc_args=()
+fi
+
+load "throughput start"
+{
+    "$bin/throughput/bench_throughput" --header 1 --scene reference --threads 1 "${ref_args[@]}"
+    for scene in reference hmx; do
+        for t in 1 2; do
+            [ "$scene $t" = "reference 1" ] && continue
+            "$bin/throughput/bench_throughput" --scene "$scene" --threads "$t" "${ref_args[@]}"
+        done
+    done
+} | tee "$out/throughput.csv"
+for t in 1 2; do
+    "$bin/throughput/bench_throughput" --scene reference --threads "$t" --cell 0.5 --steps "${ref_args[3]}" \
+        --repeats 1 --phases 1 2>&1 >/dev/null | sed "s/^/reference, $t threads: /"
+    "$bin/throughput/bench_throughput" --scene hmx --threads "$t" --cell 0.5 --steps "${ref_args[3]}" \
+        --repeats 1 --phases 1 2>&1 >/dev/null | sed "s/^/hmx, $t threads: /"
+done | tee "$out/phases.txt"
+load "throughput end / scaling start"
+
+# Scaling: the same number of particle-updates at each size (250 steps at 64,000 particles).
+{
+    echo "scene,scheme,cell_mm,particles,steps,threads,repeats,median_s,min_s,mups_median,mups_best"
+    for cell in "${sizes[@]}"; do
+        steps=$(awk -v c="$cell" -v q="$quick" 'BEGIN { s = int(250 * (c / 0.5) ^ 2); if (s < 10) s = 10; if (q) s = 3; print s }')
+        for scene in reference hmx; do
+            for t in 1 2; do
+                "$bin/throughput/bench_throughput" --scene "$scene" --threads "$t" --cell "$cell" --steps "$steps" \
+                    --repeats "$([ "$quick" = 1 ] && echo 1 || echo 3)"
+            done
+        done
+    done
+} | tee "$out/scaling.csv"
+load "scaling end / effects start"
+
+"$bin/effects/bench_effects" "${eff_args[@]}" | tee "$out/effects.csv"
+load "effects end / accuracy start"
+
+"$bin/accuracy/bench_accuracy" "${acc_args[@]}" | tee "$out/accuracy.csv"
+load "accuracy end"
+
+python=python3
+[ -x /usr/bin/python3 ] && python=/usr/bin/python3
+plots="docs"
+[ "$quick" = 1 ] && plots="$out"
+"$python" benchmarks/report.py "$out" "$plots"
+cat "$out/load.txt"
