@@ -193,8 +193,8 @@ private:
 // What a whole run comes to (summary.csv). D_max is the largest D after the first contact and
 // before the secondary impact (or the run's end); a contact is D falling to zero.
 struct summary {
-    // A cavity counts as closed when its axial chord is below this fraction of 2R: the jet
-    // can trap a pocket of about a particle spacing where it lands.
+    // A cavity counts as closed when its axial chord is below this fraction of 2R (a jet can
+    // trap a pocket about a particle spacing wide where it lands).
     static constexpr double closed_fraction = 0.05;
 
     double first_contact = -1;      // s
@@ -207,17 +207,18 @@ struct summary {
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
     // part of the heating reverses on release); what stays is plastic work and shock entropy.
     double final_hot_spot = 0;
-    // K: at the first sample at least settle_time after the first cavity closes (-1 if none):
-    // the jet's landing has decompressed by then, so this is the hot spot that stays.
+    // K: at the first sample at least settle_time after the hot spot's peak (-1 if the run
+    // ends first): a jet's landing has decompressed by then, so this is the hot spot that stays.
     static constexpr double settle_time = 5e-6;
     double settled_hot_spot = -1;
-    // Asymmetric collapse (docs/reproduction.md): a cavity's axial chord closes (the upstream
-    // wall reaches the downstream one: the chord falls below closed_fraction of 2R) while, at the last sample before, the cavity was more
-    // than twice as wide across as along its axis. A cavity shrinking evenly keeps the ratio
-    // near one; a jet closes the axis of a still-wide cavity.
+    // Collapse and its mode (docs/reproduction.md): a cavity collapses when its axial chord
+    // falls below half its initial diameter (below R); the collapse is asymmetric if the cavity
+    // is then more than asymmetry_ratio times as wide across as along its axis. A cavity
+    // shrinking evenly keeps the ratio near one; a jet halves the axis of a still-wide cavity.
+    static constexpr double asymmetry_ratio = 1.5;
     bool asymmetric[2] = {false, false};
-    double closure[2] = {-1, -1};   // s
-    cavity_state last_open[2];
+    double collapse[2] = {-1, -1};  // s
+    double closure[2] = {-1, -1};   // s: axial chord below closed_fraction of 2R
 
     // Every member by name (for checkpoints).
     template <class F>
@@ -236,9 +237,8 @@ struct summary {
         for (int b = 0; b < 2; ++b) {
             const std::string k = "_" + std::to_string(b);
             f("asymmetric" + k, asymmetric[b]);
+            f("collapse" + k, collapse[b]);
             f("closure" + k, closure[b]);
-            f("last_open_axial_chord" + k, last_open[b].axial_chord);
-            f("last_open_lateral_chord" + k, last_open[b].lateral_chord);
         }
     }
 
@@ -258,19 +258,21 @@ struct summary {
         // Walls count until their cavity closes: a pocket the jet traps has walls too.
         for (int b = 0; b < 2; ++b)
             if (closure[b] < 0) max_wall_relative_velocity = std::max(max_wall_relative_velocity, r.cavity[b].closing_speed);
-        if (r.hot_spot > max_hot_spot) max_hot_spot = r.hot_spot, t_hot_spot = r.time;
+        if (r.hot_spot > max_hot_spot) {
+            max_hot_spot = r.hot_spot, t_hot_spot = r.time, settled_hot_spot = -1;
+        } else if (settled_hot_spot < 0 && r.time >= t_hot_spot + settle_time) {
+            settled_hot_spot = r.hot_spot;
+        }
         final_hot_spot = r.hot_spot;
-        const double closed = closure[0] < 0 ? closure[1] : (closure[1] < 0 ? closure[0] : std::min(closure[0], closure[1]));
-        if (settled_hot_spot < 0 && closed >= 0 && r.time >= closed + settle_time) settled_hot_spot = r.hot_spot;
         max_temperature = std::max(max_temperature, r.max_temperature);
         for (int b = 0; b < 2 && s.radius > 0; ++b) {
-            if (closure[b] >= 0) continue;
-            if (r.cavity[b].open && r.cavity[b].axial_chord > closed_fraction * 2 * s.radius) {
-                last_open[b] = r.cavity[b];
-            } else {
-                closure[b] = r.time;
-                asymmetric[b] = last_open[b].lateral_chord > 2 * last_open[b].axial_chord;
+            const auto& c = r.cavity[b];
+            const double chord = c.open ? c.axial_chord : 0.0;
+            if (collapse[b] < 0 && chord < s.radius) {
+                collapse[b] = r.time;
+                asymmetric[b] = c.lateral_chord > asymmetry_ratio * chord;
             }
+            if (closure[b] < 0 && chord < closed_fraction * 2 * s.radius) closure[b] = r.time;
         }
     }
 };
