@@ -15,7 +15,8 @@
 // (OUTPUT/snapshots/map_NNNN.csv) and, where python3 with matplotlib is available, PNG maps of
 // pressure and temperature and a plot of the series. docs/reproduction.md defines each quantity.
 // --checkpoint writes the run's state at --checkpoint-at-us; --restart resumes from it (give
-// the original run's other flags) and continues the same outputs. Exit status: 0 done, 1 bad
+// the original run's other flags, --end-us included: the grid is sized for it) and continues
+// the same outputs. Exit status: 0 done, 1 bad
 // input or I/O error, 3 stopped by the library (numerical trouble; the outputs so far are
 // written and summary.csv's status says why).
 #include "cavity_collapse/cavity_collapse.hpp"
@@ -166,7 +167,8 @@ int run(const settings& s, const run_files& io) {
                                         {"contact", double(int(s.contact))},
                                         {"sample_every_s", s.sample_every},
                                         {"snapshot_every_s", s.snapshot_every},
-                                        {"hot_spot_radius_m", s.hot_spot_radius}};
+                                        {"hot_spot_radius_m", s.hot_spot_radius},
+                                        {"end_s", s.end}};
         mon.visit([&](const std::string& k, auto& x) { v["monitor." + k] = double(x); });
         sum.visit([&](const std::string& k, auto& x) { v["summary." + k] = double(x); });
         return v;
@@ -186,7 +188,8 @@ int run(const settings& s, const run_files& io) {
                                         {"contact", double(int(s.contact))},
                                         {"sample_every_s", s.sample_every},
                                         {"snapshot_every_s", s.snapshot_every},
-                                        {"hot_spot_radius_m", s.hot_spot_radius}})
+                                        {"hot_spot_radius_m", s.hot_spot_radius},
+                                        {"end_s", s.end}})
             if (value_of(v, key, io.restart) != mine)
                 throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +
                                             std::to_string(value_of(v, key, io.restart)) + ", this run's is " +
