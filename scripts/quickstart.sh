@@ -4,8 +4,11 @@
 # and build the release preset (only what the flagship needs), run it.
 set -euo pipefail
 
-FLAGSHIP=impact_1d
-FLAGSHIP_ARGS=(--velocity 300 --output results/impact_1d)
+# The paper's strong-shock run: R = 10 mm cavities, +-300 m/s, to 33 us after contact, with
+# snapshots at the times of the paper's pressure and temperature figures.
+FLAGSHIP=cavity_collapse
+FLAGSHIP_ARGS=(--velocity 300 --radius 10 --cell 0.5 --end-us 40 --snapshot-every-us 0
+               --snapshots-after-contact-us 4,6,8,12,14,20,24,25,30 --output results/cavity_collapse)
 PRESET=release
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
