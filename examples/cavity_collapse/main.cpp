@@ -347,7 +347,7 @@ int main(int argc, char** argv) try {
             s.snapshots_after_contact.push_back(1e-6 * t);
         }
     }
-    s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
+    s.threads = args.integer("threads", 0, 0, 256);
     run_files io;
     io.quiet = quiet;
     io.out = args.directory("output", "results/cavity_collapse");

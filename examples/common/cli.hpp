@@ -59,6 +59,19 @@ public:
         return v;
     }
 
+    /// A whole-number flag in [lo, hi], with a default; a fraction is refused, not truncated.
+    int integer(const std::string& name, int fallback, int lo, int hi) {
+        const auto it = take(name);
+        if (!it) return fallback;
+        char* end = nullptr;
+        const long v = std::strtol(it->c_str(), &end, 10);
+        if (end == it->c_str() || *end != '\0' || v < lo || v > hi)
+            throw std::invalid_argument("--" + name + " = " + (it->empty() ? "''" : *it) +
+                                        " is invalid; valid: a whole number in [" + std::to_string(lo) + ", " +
+                                        std::to_string(hi) + "]");
+        return static_cast<int>(v);
+    }
+
     /// A flag that takes one of a fixed set of words.
     std::string choice(const std::string& name, const std::string& fallback, std::initializer_list<std::string> allowed) {
         const auto it = take(name);

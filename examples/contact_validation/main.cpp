@@ -26,7 +26,7 @@ int main(int argc, char** argv) try {
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
     s.time = 1e-6 * args.real("time-us", 14.0, 0.0, 40.0);
-    s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
+    s.threads = args.integer("threads", 0, 0, 256);
     const auto out = args.directory("output", "results/contact_validation");
     args.finish();
 

@@ -25,7 +25,7 @@ int main(int argc, char** argv) try {
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
     s.end_time = 1e-6 * args.real("end-us", 3.0, 0.0, 5.0);
-    s.threads = static_cast<int>(args.real("threads", 0.0, 0.0, 256.0, true));
+    s.threads = args.integer("threads", 0, 0, 256);
     const std::string scheme = args.choice("scheme", "usf", {"usf", "musl", "usl"});
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
              : scheme == "usl"  ? gimlet::update_scheme::usl

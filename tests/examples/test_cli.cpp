@@ -54,6 +54,16 @@ TEST_CASE("real flags: accepted in range, refused outside it naming the flag and
                       Contains("--threads = -1 is invalid; valid range: [0, 256]"));
 }
 
+TEST_CASE("whole-number flags: a fraction or a word is refused, not truncated", "[examples][cli]") {
+    CHECK(parse({"--threads", "2"}).integer("threads", 0, 0, 256) == 2);
+    CHECK(parse({}).integer("threads", 3, 0, 256) == 3);
+    for (const std::string bad : {"2.5", "-1", "257", "two", "", "2x"}) {
+        INFO("--threads '" << bad << "'");
+        CHECK_THROWS_WITH(parse({"--threads", bad}).integer("threads", 0, 0, 256),
+                          Contains("--threads = ") && Contains(" is invalid; valid: a whole number in [0, 256]"));
+    }
+}
+
 TEST_CASE("malformed command lines are refused", "[examples][cli]") {
     CHECK_THROWS_WITH(parse({"--cell"}), Contains("flag --cell needs a value") && Contains("usage: prog"));
     CHECK_THROWS_WITH(parse({"--cell", "0.1", "--cell", "0.2"}), Contains("flag --cell is given more than once"));
