@@ -69,3 +69,33 @@ for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))
     fig.tight_layout()
     fig.savefig(out / f"map_{int(i):04d}.png", dpi=100)
     plt.close(fig)
+
+# All snapshots side by side, one row per quantity, like the paper's snapshot figures: the whole
+# pair of blocks in pressure, the upper block in temperature (the paper shows only that one).
+if len(times.get("index", [])) >= 2:
+    for key, label, cmap, lo, name, upper_only in (
+            ("pressure_MPa", "pressure (MPa)", "viridis", None, "maps_pressure.png", False),
+            ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True)):
+        n = len(times["index"])
+        fig, axes = plt.subplots(1, n, figsize=(1.55 * n + 1.0, 3.6 if not upper_only else 2.4), sharey=True,
+                                 squeeze=False)
+        maps = [read(snaps / f"map_{int(i):04d}.csv") for i in times["index"]]
+        for m in maps:
+            if upper_only:
+                keep = [j for j, b in enumerate(m["body"]) if b == 1]
+                for k in m:
+                    m[k] = [m[k][j] for j in keep]
+        every = sorted(v for m in maps for v in m[key])
+        hi = every[int(0.999 * (len(every) - 1))]
+        for a, m, tc in zip(axes[0], maps, times["time_after_contact_us"]):
+            span = max(m["y_mm"]) - min(m["y_mm"])
+            height = 3.0 if not upper_only else 1.8
+            size = (height * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
+            sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
+                           linewidths=0, rasterized=True)
+            a.set_aspect("equal")
+            a.set_title(f"{tc:.0f} us", fontsize=8)
+            a.tick_params(labelsize=6)
+        fig.colorbar(sc, ax=list(axes[0]), label=label, shrink=0.8)
+        fig.savefig(out / name, dpi=90)
+        plt.close(fig)
