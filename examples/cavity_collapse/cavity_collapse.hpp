@@ -214,9 +214,11 @@ struct summary {
     // Collapse and its mode (docs/reproduction.md): a cavity collapses when its axial chord
     // falls below half its initial diameter (below R); the collapse is asymmetric if the cavity
     // is then more than asymmetry_ratio times as wide across as along its axis. A cavity
-    // shrinking evenly keeps the ratio near one; a jet halves the axis of a still-wide cavity.
-    static constexpr double asymmetry_ratio = 1.5;
+    // shrinking evenly keeps the ratio near one (1.01 for R = 6 mm at 150 m/s, 1 mm cells); a
+    // jet halves the axis of a still-wide cavity (1.47 for R = 10 mm at 300 m/s).
+    static constexpr double asymmetry_ratio = 1.25;
     bool asymmetric[2] = {false, false};
+    double aspect[2] = {-1, -1};    // lateral / axial chord at collapse (-1: no collapse)
     double collapse[2] = {-1, -1};  // s
     double closure[2] = {-1, -1};   // s: axial chord below closed_fraction of 2R
 
@@ -238,6 +240,7 @@ struct summary {
             const std::string k = "_" + std::to_string(b);
             f("asymmetric" + k, asymmetric[b]);
             f("collapse" + k, collapse[b]);
+            f("aspect" + k, aspect[b]);
             f("closure" + k, closure[b]);
         }
     }
@@ -270,7 +273,8 @@ struct summary {
             const double chord = c.open ? c.axial_chord : 0.0;
             if (collapse[b] < 0 && chord < s.radius) {
                 collapse[b] = r.time;
-                asymmetric[b] = c.lateral_chord > asymmetry_ratio * chord;
+                aspect[b] = chord > 0 ? c.lateral_chord / chord : std::numeric_limits<double>::infinity();
+                asymmetric[b] = aspect[b] > asymmetry_ratio;
             }
             if (closure[b] < 0 && chord < closed_fraction * 2 * s.radius) closure[b] = r.time;
         }
