@@ -79,7 +79,10 @@ class Runner:
         path = self.out / sweep / "summary.csv"
         path.parent.mkdir(parents=True, exist_ok=True)
         with path.open("w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=["run", *[k for k in rows[0] if k != "run"]])
+            names = ["run"]
+            for row in rows:  # runs by an older binary may lack a newer column
+                names += [k for k in row if k not in names]
+            w = csv.DictWriter(f, fieldnames=names, restval="")
             w.writeheader()
             w.writerows(rows)
         print(f"sweep.py: {path}")
