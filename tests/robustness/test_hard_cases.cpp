@@ -1,0 +1,489 @@
+// SPDX-License-Identifier: MIT
+// Hard cases (issue 7, item 1), coarse but real: runs at the edge of what the method does. Each
+// one watches the whole run (every step) and asserts
+//   * every particle field finite (position, velocity, stress, F, e, temperature), det F > 0;
+//   * no particle lost: the count is unchanged and every particle is inside the grid;
+//   * momentum conserved to round-off, relative to |m v| of one body;
+//   * total energy E = kinetic + internal never rises above its start by more than a stated
+//     tolerance; what it loses (contact, grid transfers) is printed.
+// What "internal" holds (core/material_update.hpp): e integrates the whole stress power
+// de = dt/rho (sigma^n + sigma^{n+1})/2 : D with sigma = s - (P + q) I, so it holds the
+// pressure work, the artificial-viscosity work q (the shock's heat) and the deviatoric work,
+// elastic (stored) and plastic (heat) alike. The temperature is a function of these, not an
+// extra energy, so E = kinetic + sum m_p e_p is the whole energy of the system.
+// docs/robustness.md ("Hard cases") lists the cases, bounds and measured values.
+#include "cavity_collapse/cavity_collapse.hpp"
+
+#include <gimlet/gimlet.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+using Catch::Matchers::Contains;
+using S = gimlet::space<2>;
+using hmx = gimlet::materials::hmx_material<>;
+using elastic = gimlet::elastic_material;
+
+namespace {
+
+const double inf = std::numeric_limits<double>::infinity();
+
+/// What one run came to: filled by watch, checked by check_invariants.
+struct record {
+    std::string name;
+    std::size_t count0 = 0;
+    double momentum_scale = 0;  // |m v| of one body (kg m/s per metre)
+    bool x_momentum_only = false;  // a wall takes up the y momentum: check x alone
+    S::vector p0 = S::vector::Zero();
+    double e0 = 0;
+    std::size_t samples = 0;
+    bool finite = true, inside = true, count_kept = true;
+    std::string first_problem;
+    double min_det_f = inf, max_det_f = 0;
+    double max_speed = 0;
+    double max_momentum_error = 0;  // |P - P0| / momentum_scale
+    double max_energy_rise = -inf;  // max (E - E0) / E0 after the start
+    double min_energy_change = inf; // min (E - E0) / E0
+    double final_energy_change = 0;
+    double max_stress = 0;          // Pa, largest |sigma_ij| (sigma_zz included)
+    double max_compression = 0;     // largest eta = 1 - det F
+    std::uint64_t steps = 0;
+    double time = 0, seconds = 0;
+
+    void note(const std::string& what) {
+        if (first_problem.empty()) first_problem = what;
+    }
+};
+
+/// Checks every particle of `sol` and the conserved sums; momentum_scale and the start values
+/// are taken at the first call.
+template <class Solver>
+void watch(const Solver& sol, record& r) {
+    using namespace gimlet;
+    const auto& ps = sol.particles();
+    const bool first = r.samples == 0;
+    if (first) {
+        r.count0 = ps.size();
+        r.p0 = diagnostics::linear_momentum(sol);
+        r.e0 = diagnostics::kinetic_energy(sol) + diagnostics::internal_energy(sol);
+    }
+    ++r.samples;
+    if (ps.size() != r.count0) r.count_kept = false, r.note("particle count changed");
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        const auto p = ps[i];
+        const auto& x = p.template get<fields::position>();
+        const auto& v = p.template get<fields::velocity>();
+        const auto& F = p.template get<fields::deformation_gradient>();
+        const auto sigma = stress3(p);
+        bool ok = x.allFinite() && v.allFinite() && F.allFinite() && sigma.allFinite() &&
+                  std::isfinite(p.template get<fields::specific_internal_energy>());
+        if constexpr (Solver::store_type::template has<fields::temperature>)
+            ok = ok && std::isfinite(p.template get<fields::temperature>());
+        if (!ok) {
+            r.finite = false;
+            r.note("particle " + std::to_string(i) + ": a field is not finite");
+            continue;
+        }
+        const double j = F.determinant();
+        r.min_det_f = std::min(r.min_det_f, j);
+        r.max_det_f = std::max(r.max_det_f, j);
+        r.max_compression = std::max(r.max_compression, 1.0 - j);
+        r.max_speed = std::max(r.max_speed, double(v.norm()));
+        r.max_stress = std::max(r.max_stress, double(sigma.cwiseAbs().maxCoeff()));
+        if (!sol.background_grid().inside(x)) r.inside = false, r.note("particle " + std::to_string(i) + " off the grid");
+    }
+    const double e = diagnostics::kinetic_energy(sol) + diagnostics::internal_energy(sol);
+    const double de = (e - r.e0) / r.e0;
+    if (!first) r.max_energy_rise = std::max(r.max_energy_rise, de);
+    r.min_energy_change = std::min(r.min_energy_change, de);
+    r.final_energy_change = de;
+    const S::vector dp = diagnostics::linear_momentum(sol) - r.p0;
+    r.max_momentum_error = std::max(r.max_momentum_error, (r.x_momentum_only ? std::abs(dp[0]) : dp.norm()) / r.momentum_scale);
+    r.steps = sol.steps();
+    r.time = double(sol.time());
+}
+
+void print(const record& r) {
+    std::printf("hard case %-34s %6llu steps %8.2f us %6.2f s | energy: max rise %+.2e, min %+.2e, end %+.2e | "
+                "momentum err %.1e | det F [%.4f, %.4f] | max |v| %.0f m/s | max |sigma| %.3g Pa\n",
+                r.name.c_str(), static_cast<unsigned long long>(r.steps), r.time * 1e6, r.seconds,
+                r.max_energy_rise, r.min_energy_change, r.final_energy_change, r.max_momentum_error, r.min_det_f,
+                r.max_det_f, r.max_speed, r.max_stress);
+    std::fflush(stdout);
+}
+
+/// The assertions every case shares: finite fields, det F > 0, no particle lost, momentum to
+/// `momentum_bound` of one body's |m v|, total energy never above (1 + energy_rise_bound) E0.
+void check_invariants(const record& r, double momentum_bound, double energy_rise_bound) {
+    INFO(r.name << ": " << r.first_problem);
+    CHECK(r.samples > 1);
+    CHECK(r.finite);
+    CHECK(r.count_kept);
+    CHECK(r.inside);
+    CHECK(r.min_det_f > 0);
+    CHECK(r.max_momentum_error <= momentum_bound);
+    CHECK(r.max_energy_rise <= energy_rise_bound);
+}
+
+/// Runs `sol` to `t_end`, watching every step; fills r's counters and timing.
+template <class Solver, class... More>
+void run_watched(Solver& sol, double t_end, record& r, More&... more) {
+    const auto start = std::chrono::steady_clock::now();
+    gimlet::diagnostics::every_steps w(1, [&r](const auto& s) { watch(s, r); });
+    sol.run_until(t_end, w, more...);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+gimlet::solver_options<S> one_thread() {
+    gimlet::solver_options<S> opt;
+    opt.threads = 1;
+    return opt;
+}
+
+// ---- the cavity scenes ---------------------------------------------------------------------
+
+using cavity_solver = gimlet::solver<S, gimlet::shape::ugimp, cavity_collapse::material, gimlet::contact::distance>;
+
+struct cavity_run {
+    record r;
+    cavity_collapse::summary sum;
+    cavity_collapse::sample last;
+};
+
+cavity_run run_cavity(const std::string& name, double velocity, double after_contact) {
+    cavity_collapse::settings s;
+    s.velocity = velocity;
+    s.radius = 10e-3;
+    s.cell = 2e-3;
+    s.end = cavity_collapse::contact_time(s) + after_contact;
+    s.threads = 1;
+    cavity_solver sol(cavity_collapse::make_scene(s), one_thread());
+    cavity_run out;
+    out.r.name = name;
+    out.r.momentum_scale = 0.5 * gimlet::diagnostics::total_mass(sol) * velocity;
+    cavity_collapse::monitor mon(s);
+    auto samples = gimlet::diagnostics::every_time(0.5e-6, [&](const auto& so) {
+        out.last = mon.measure(so);
+        out.sum.add(out.last, s);
+    });
+    run_watched(sol, s.end, out.r, samples);
+    return out;
+}
+
+// ---- uniaxial HMX impact (as examples/impact_1d, any speed) ------------------------------------
+
+using strip_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx>;
+
+/// Two HMX slabs of `length` in a periodic strip 4 cells wide hit each other at +-v along y
+/// (USF, as impact_1d: it keeps the energy of a shock). The grid leaves room for the slabs to
+/// move v t_end outwards.
+strip_solver make_strip(double velocity, double cell, double length, double t_end,
+                        gimlet::update_scheme scheme = gimlet::update_scheme::usf) {
+    const double width = 4 * cell;
+    const double margin = cell * std::ceil((velocity * t_end) / cell + 10);
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector(0.0, -length - margin);
+    gs.upper = S::vector(width, length + margin);
+    gs.cell = cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
+    gimlet::scene::scene<S, hmx> sc(gs);
+    const auto m = gimlet::materials::make_hmx();
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, length)), m, S::vector(0.0, -velocity), 2,
+                "upper slab");
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -length), S::vector(width, 0.0)), m, S::vector(0.0, velocity), 2,
+                "lower slab");
+    auto opt = one_thread();
+    opt.scheme = scheme;
+    return strip_solver(sc, opt);
+}
+
+// ---- the sparse cloud ------------------------------------------------------------------------
+
+using cloud_solver = gimlet::solver<S, gimlet::shape::ugimp, elastic>;
+constexpr double cloud_cell = 1e-3, steel_density = 7800, steel_young = 200e9, steel_nu = 0.3, fragment_speed = 800;
+
+/// A steel-like elastic block 8 x 8 cells at rest in a doubly periodic grid of 24 x 24 cells, and
+/// twelve single particles (fragments, a block particle's mass each) on a ring 10 cells around
+/// it, every other one flying at the block, the rest away from it through empty cells.
+/// `light_particles` adds two more near the fragments' paths: one of 1e-10 of a block particle's
+/// mass (above the default cut-off) and one of 1e-14 (below it), with moduli scaled alike so
+/// their wave speed is steel's.
+cloud_solver make_cloud(double mass_cutoff, bool light_particles) {
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(24 * cloud_cell, 24 * cloud_cell);
+    gs.cell = cloud_cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    gimlet::scene::scene<S, elastic> sc(gs);
+    const auto steel = gimlet::make_elastic_material(steel_density, steel_young, steel_nu);
+    sc.add_body(gimlet::scene::box<S>(S::vector(8 * cloud_cell, 8 * cloud_cell), S::vector(16 * cloud_cell, 16 * cloud_cell)),
+                steel, S::vector::Zero(), 2, "block");
+    // One particle each: a box smaller than the particle spacing (h/2) around one lattice point.
+    auto single = [&](double i, double j, const S::vector& v, const elastic& mat, const std::string& name) {
+        const S::vector c((i + 0.25) * cloud_cell, (j + 0.25) * cloud_cell);
+        sc.add_body(gimlet::scene::box<S>(c - S::vector::Constant(0.2 * cloud_cell), c + S::vector::Constant(0.2 * cloud_cell)),
+                    mat, v, 2, name);
+    };
+    for (int k = 0; k < 12; ++k) {
+        const double a = k * std::numbers::pi / 6;
+        const S::vector dir(std::cos(a), std::sin(a));
+        const S::vector at = S::vector::Constant(12.0) + 10.0 * dir;
+        single(std::floor(at[0]), std::floor(at[1]), (k % 2 ? 1.0 : -1.0) * fragment_speed * dir, steel,
+               "fragment " + std::to_string(k));
+    }
+    if (light_particles) {
+        single(2, 20, S::vector(700.0, -300.0),
+               gimlet::make_elastic_material(steel_density * 1e-10, steel_young * 1e-10, steel_nu), "light");
+        single(20, 2, S::vector(-500.0, 400.0),
+               gimlet::make_elastic_material(steel_density * 1e-14, steel_young * 1e-14, steel_nu), "below cut-off");
+    }
+    auto opt = one_thread();
+    opt.mass_cutoff = mass_cutoff;
+    return cloud_solver(sc, opt);
+}
+
+double fragment_momentum() { return steel_density * (cloud_cell / 2) * (cloud_cell / 2) * fragment_speed; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+TEST_CASE("hard case: cavity collapse with jetting at 700 m/s through full closure", "[robustness][hard]") {
+    // The paper's scene (R = 10 mm) at 2 mm cells, 3372 particles, distance-switched contact,
+    // MUSL, to 25 us after contact: the jets land on the far walls about 17 us after contact.
+    const auto c = run_cavity("cavity 700 m/s, R 10 mm", 700.0, 25e-6);
+    print(c.r);
+    std::printf("  first contact %.2f us, collapse %.2f / %.2f us, closure %.2f / %.2f us, max wall velocity %.0f m/s, "
+                "hot spot %.0f K; energy lost %.1f %%\n",
+                c.sum.first_contact * 1e6, c.sum.collapse[0] * 1e6, c.sum.collapse[1] * 1e6, c.sum.closure[0] * 1e6,
+                c.sum.closure[1] * 1e6, c.sum.max_wall_relative_velocity, c.sum.max_hot_spot,
+                -100 * c.r.final_energy_change);
+    // Momentum: the total is zero (symmetric impact); round-off over 3400 particles and 400
+    // steps is below 1e-13 of one block's |m v|. Energy: exactly kept in free flight, then only
+    // lost (contact, transfers); 1e-6 is the stated round-off tolerance on a rise.
+    check_invariants(c.r, 1e-12, 1e-6);
+    // Measured loss 14 %: most of it where the jet lands, over-compressed and hot. The bound
+    // guards against a regression, it is not a physical limit.
+    CHECK(c.r.final_energy_change > -0.20);
+    // Both cavities collapsed and closed, after the contact.
+    CHECK(c.sum.first_contact > 0);
+    CHECK(c.sum.collapse[0] > c.sum.first_contact);
+    CHECK(c.sum.collapse[1] > c.sum.first_contact);
+    CHECK(c.sum.closure[0] > 0);
+    CHECK(c.sum.closure[1] > 0);
+    CHECK(c.r.time > std::max(c.sum.closure[0], c.sum.closure[1]) + 4e-6);  // a few us past closure
+}
+
+TEST_CASE("hard case: the long weak-shock run, 150 m/s, 180 us after contact", "[robustness][hard]") {
+    // R = 10 mm at 2 mm cells: first contact, separation, the secondary impact, final separation.
+    const auto c = run_cavity("weak shock 150 m/s, 180 us", 150.0, 180e-6);
+    print(c.r);
+    std::printf("  first contact %.2f us, separation %.2f us, D_max %.3f mm at %.2f us, secondary impact %.2f us, "
+                "final D %.3f mm; energy lost %.1f %%\n",
+                c.sum.first_contact * 1e6, c.sum.separation * 1e6, c.sum.D_max * 1e3, c.sum.t_D_max * 1e6,
+                c.sum.secondary_impact * 1e6, c.last.D * 1e3, -100 * c.r.final_energy_change);
+    check_invariants(c.r, 1e-12, 1e-6);
+    CHECK(c.r.final_energy_change > -0.08);  // measured 4.8 % lost over 860 steps; regression guard
+    CHECK(c.sum.first_contact > 0);
+    CHECK(c.sum.separation > c.sum.first_contact);
+    CHECK(c.sum.secondary_impact > c.sum.separation);
+    CHECK(c.last.D > 0.25 * 1e-3);  // separated at the end (more than a quarter particle spacing apart)
+}
+
+TEST_CASE("hard case: uniaxial HMX impact towards the Mie-Grueneisen singularity", "[robustness][hard][eos]") {
+    // Slabs 5 mm long at 0.25 mm cells (USF, as examples/impact_1d). The singularity check stops
+    // the run once 1 - s eta <= 0.05 (eta >= 0.365); the steady Hugoniot state of a symmetric
+    // impact has 1 - s eta = c0 / (c0 + s v), which reaches 0.05 at v = 20 km/s.
+    const double cell = 0.25e-3, length = 5e-3, s_slope = 2.6;
+    auto t_end = [&](double v) { return 0.6 * length / (2740.0 + s_slope * v); };  // shock 60 % through
+
+    SECTION("2000 m/s: eta up to 0.34, stays finite and balanced") {
+        const double v = 2000;
+        auto sol = make_strip(v, cell, length, t_end(v));
+        record r;
+        r.name = "strip 2000 m/s";
+        r.momentum_scale = 0.5 * gimlet::diagnostics::total_mass(sol) * v;
+        run_watched(sol, t_end(v), r);
+        print(r);
+        std::printf("  max eta %.4f (1 - s eta = %.4f); energy lost %.1f %%\n", r.max_compression,
+                    1 - s_slope * r.max_compression, -100 * r.final_energy_change);
+        check_invariants(r, 1e-12, 1e-6);
+        CHECK(r.max_compression > 0.3);                       // close to the limit (measured 0.3405)
+        CHECK(1 - s_slope * r.max_compression > 0.05);        // but short of the stop
+    }
+    // Beyond: 4000 m/s has a steady state at 1 - s eta = 0.21, but the impact's first steps
+    // over-compress the particles at the contact plane (measured: the stop comes between 3000 and
+    // 3500 m/s with USF at this cell); 30 km/s is beyond the limit on the Hugoniot itself and
+    // jumps past 1/s within one step. Both must stop with the EOS's numerical_error naming the
+    // particle, its position and the step, every state before it finite.
+    for (const double v : {4000.0, 30000.0}) {
+        DYNAMIC_SECTION(v << " m/s: stops cleanly at the singularity") {
+            auto sol = make_strip(v, cell, length, t_end(v));
+            record r;
+            r.name = "strip " + std::to_string(int(v)) + " m/s";
+            r.momentum_scale = 0.5 * gimlet::diagnostics::total_mass(sol) * v;
+            std::string message;
+            try {
+                run_watched(sol, t_end(v), r);
+            } catch (const gimlet::numerical_error& e) {
+                message = e.what();
+            }
+            print(r);
+            std::printf("  stopped: %s\n", message.c_str());
+            INFO(message);
+            CHECK_THAT(message, Contains("reached the Mie-Grueneisen limit") && Contains("particle") &&
+                                    Contains("step") && Contains(") m") && Contains("singular at eta = 1/s"));
+            check_invariants(r, 1e-12, 1e-6);  // every step up to the stop
+        }
+    }
+}
+
+TEST_CASE("hard case: a block crossing hundreds of cells at high speed", "[robustness][hard]") {
+    // An HMX block 6 mm x 6 mm, off the lattice by 0.3 mm, in a doubly periodic 16 mm x 16 mm grid
+    // of 1 mm cells moves at (1500, 600) m/s for 200 us: 300 cells along x, 120 along y.
+    const double cell = 1e-3, t_end = 200e-6;
+    const S::vector v(1500.0, 600.0);
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(16 * cell, 16 * cell);
+    gs.cell = cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    gimlet::scene::scene<S, hmx> sc(gs);
+    sc.add_body(gimlet::scene::box<S>(S::vector(5.3e-3, 5.3e-3), S::vector(11.3e-3, 11.3e-3)),
+                gimlet::materials::make_hmx(), v, 2, "block");
+    gimlet::solver<S, gimlet::shape::ugimp, hmx> sol(sc, one_thread());
+    record r;
+    r.name = "translation, 300 cells";
+    r.momentum_scale = gimlet::diagnostics::total_mass(sol) * v.norm();
+    run_watched(sol, t_end, r);
+    print(r);
+    // A rigid translation: energy and momentum to round-off, det F = 1, stress at round-off
+    // (1 Pa is 2e-10 of G).
+    check_invariants(r, 1e-12, 1e-12);
+    CHECK(r.min_energy_change > -1e-12);
+    CHECK(r.min_det_f > 1 - 1e-12);
+    CHECK(r.max_det_f < 1 + 1e-12);
+    CHECK(r.max_stress < 1.0);
+    CHECK(v[0] * t_end / cell == Approx(300));
+}
+
+TEST_CASE("hard case: a body touching the grid edge", "[robustness][hard]") {
+    const double cell = 1e-3, side = 10e-3, v = 300;
+    const auto m = gimlet::materials::make_hmx();
+    SECTION("fixed wall under the block's face: it hits the wall at 300 m/s") {
+        gimlet::grid_spec<S> gs;
+        gs.lower = S::vector::Zero();
+        gs.upper = S::vector(side, 3 * side);
+        gs.cell = cell;
+        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::fixed};
+        gimlet::scene::scene<S, hmx> sc(gs);
+        sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(side, side)), m, S::vector(0.0, -v), 2, "block");
+        gimlet::solver<S, gimlet::shape::ugimp, hmx> sol(sc, one_thread());
+        record r;
+        r.name = "fixed wall at the face";
+        r.momentum_scale = gimlet::diagnostics::total_mass(sol) * v;
+        r.x_momentum_only = true;  // the wall takes up y momentum
+        double max_py = 0;
+        auto wall = gimlet::diagnostics::every_steps(1, [&](const auto& so) {
+            max_py = std::max(max_py, std::abs(gimlet::diagnostics::linear_momentum(so)[1]));
+        });
+        run_watched(sol, 12e-6, r, wall);
+        print(r);
+        std::printf("  |p_y| max %.4f of m v, at the end %.4f; energy lost %.1f %%\n", max_py / r.momentum_scale,
+                    gimlet::diagnostics::linear_momentum(sol)[1] / r.momentum_scale, -100 * r.final_energy_change);
+        check_invariants(r, 1e-12, 1e-6);
+        CHECK(max_py <= r.momentum_scale * (1 + 1e-12));  // the wall never adds momentum
+    }
+    SECTION("free edges at the blocks' outer faces: they collide at +-300 m/s, then rebound off the grid") {
+        gimlet::grid_spec<S> gs;
+        gs.lower = S::vector::Zero();
+        gs.upper = S::vector(side, 2 * side + 2 * cell);
+        gs.cell = cell;
+        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
+        gimlet::scene::scene<S, hmx> sc(gs);
+        sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(side, side)), m, S::vector(0.0, v), 2,
+                    "lower block");
+        sc.add_body(gimlet::scene::box<S>(S::vector(0.0, side + 2 * cell), S::vector(side, 2 * side + 2 * cell)), m,
+                    S::vector(0.0, -v), 2, "upper block");
+        gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance> sol(sc, one_thread());
+        record r;
+        r.name = "free edges at the faces";
+        r.momentum_scale = 0.5 * gimlet::diagnostics::total_mass(sol) * v;
+        // Contact at 3.3 us; the release from the outer faces sends them back to the grid's edges
+        // at about 14.8 us. Up to 12 us every assertion holds ...
+        run_watched(sol, 12e-6, r);
+        print(r);
+        check_invariants(r, 1e-12, 1e-6);
+        // ... and a face that reaches a free edge stops the run, naming the particle.
+        std::string message;
+        try {
+            run_watched(sol, 20e-6, r);
+        } catch (const gimlet::numerical_error& e) {
+            message = e.what();
+        }
+        std::printf("  then stopped: %s\n", message.c_str());
+        CHECK_THAT(message, Contains("left the grid through a non-periodic boundary") && Contains("particle") &&
+                                Contains("step"));
+        check_invariants(r, 1e-12, 1e-6);
+    }
+}
+
+TEST_CASE("hard case: near-empty nodes (a sparse cloud of single particles)", "[robustness][hard]") {
+    // Single particles alone on their nodes fly through empty cells for 40 us (32 mm, 32 cells);
+    // half of them hit the block and bounce. Nodes at the edges of their stencils carry tiny masses.
+    SECTION("default mass cut-off (1e-12)") {
+        auto sol = make_cloud(1e-12, false);
+        record r;
+        r.name = "sparse cloud, cut-off 1e-12";
+        r.momentum_scale = fragment_momentum();
+        run_watched(sol, 40e-6, r);
+        print(r);
+        // Momentum: a node under the cut-off gets no velocity, so the force on it is dropped:
+        // measured 6.7e-9 of one fragment's |m v| (1e-14 with no cut-off, below). Energy: the
+        // fragments' elastic impacts on the block overshoot by 1.0 % (MUSL, as in the two-disk
+        // test of tests/core/test_conservation.cpp); bound 2 %.
+        check_invariants(r, 1e-7, 0.02);
+        // No particle holds more than the whole energy: 1/2 m v^2 <= 1.02 E0 = 1.02 x 12 fragments'
+        // 1/2 m 800^2, i.e. |v| <= 800 sqrt(12.24) = 2800 m/s (measured 1102 m/s, a block particle
+        // struck by a fragment).
+        CHECK(r.max_speed < fragment_speed * std::sqrt(12 * 1.02));
+    }
+    SECTION("no mass cut-off: only nodes of exactly zero mass are skipped") {
+        auto sol = make_cloud(0.0, false);
+        record r;
+        r.name = "sparse cloud, cut-off 0";
+        r.momentum_scale = fragment_momentum();
+        run_watched(sol, 40e-6, r);
+        print(r);
+        check_invariants(r, 1e-12, 0.02);
+        CHECK(r.max_speed < fragment_speed * std::sqrt(12 * 1.02));
+    }
+}
+
+TEST_CASE("hard case (known issue): particles of a tiny mass next to a heavy one's stencil edge",
+          "[robustness][hard][!mayfail]") {
+    // Two particles of 1e-10 and 1e-14 of a fragment's mass near the fragments' paths. A node at
+    // the edge of a heavy particle's stencil has a tiny weight S there and a mass S m, so its
+    // acceleration f / m grows like 1 / sqrt(S) (uGIMP: G ~ sqrt(S) / h); the heavy particle
+    // itself takes it with weight S, but a light particle sitting close to that node takes it
+    // with weight O(1) and is flung away. Measured: 26 km/s (the light particle flies at 760 m/s),
+    // the time step 4x smaller (2711 steps instead of 690); with the particles placed a little
+    // differently, 50 and 93 km/s and det F = 0.002. The totals barely notice (tiny masses).
+    auto sol = make_cloud(1e-12, true);
+    record r;
+    r.name = "sparse cloud with light particles";
+    r.momentum_scale = fragment_momentum();
+    run_watched(sol, 40e-6, r);
+    print(r);
+    check_invariants(r, 1e-6, 0.02);
+    CHECK(r.max_speed < 2 * fragment_speed);
+    CHECK(r.min_det_f > 0.5);
+}
