@@ -202,6 +202,7 @@ struct summary {
     double D_max = 0, t_D_max = -1; // m, s
     double secondary_impact = -1;   // s
     double max_wall_relative_velocity = 0;  // m/s
+    double max_upstream_speed = 0;          // m/s: the paper's jet speed, its largest
     double max_hot_spot = 0, max_temperature = 0;  // K
     double t_hot_spot = -1;
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
@@ -231,6 +232,7 @@ struct summary {
         f("t_D_max", t_D_max);
         f("secondary_impact", secondary_impact);
         f("max_wall_relative_velocity", max_wall_relative_velocity);
+        f("max_upstream_speed", max_upstream_speed);
         f("max_hot_spot", max_hot_spot);
         f("max_temperature", max_temperature);
         f("t_hot_spot", t_hot_spot);
@@ -260,7 +262,10 @@ struct summary {
         if (first_contact >= 0 && secondary_impact < 0 && r.D > D_max) D_max = r.D, t_D_max = r.time;
         // Walls count until their cavity closes: a pocket the jet traps has walls too.
         for (int b = 0; b < 2; ++b)
-            if (closure[b] < 0) max_wall_relative_velocity = std::max(max_wall_relative_velocity, r.cavity[b].closing_speed);
+            if (closure[b] < 0) {
+                max_wall_relative_velocity = std::max(max_wall_relative_velocity, r.cavity[b].closing_speed);
+                max_upstream_speed = std::max(max_upstream_speed, r.cavity[b].upstream_speed);
+            }
         if (r.hot_spot > max_hot_spot) {
             max_hot_spot = r.hot_spot, t_hot_spot = r.time, settled_hot_spot = -1;
         } else if (settled_hot_spot < 0 && r.time >= t_hot_spot + settle_time) {

@@ -279,7 +279,7 @@ int run(const settings& s, const run_files& io) {
 
     std::ofstream su(out / "summary.csv");
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
-          "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_hotspot_temperature_K,"
+          "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,status\n";
@@ -287,7 +287,7 @@ int run(const settings& s, const run_files& io) {
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
        << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
-       << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_hot_spot << ','
+       << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_upstream_speed << ',' << sum.max_hot_spot << ','
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
