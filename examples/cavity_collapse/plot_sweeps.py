@@ -8,7 +8,9 @@ Reads SWEEPS_DIR (default results/sweeps)/<sweep>/summary.csv and each run's ser
 writes to DIR (default SWEEPS_DIR/figures) whichever of these it has data for:
   D_weak_velocity.png, D_weak_radius.png, D_strong_velocity.png   D(t) like the paper's figures
   wall_velocity.png    maximum relative wall velocity against v for each R
-  hot_spot.png         hot-spot temperature against v for each R
+  hot_spot.png         hot-spot temperature (5 us after its peak) against v for each R
+  hot_spot_peak.png    its peak, when the jet lands
+  collapse_mode.png    aspect at collapse and jet speed / v against v for each R
   threshold.png        the asymmetric-collapse threshold speed against R
   resolution.png       D_max and hot spot against the cell size
 Needs matplotlib (Debian: python3-matplotlib; run with /usr/bin/python3).
@@ -55,23 +57,65 @@ def d_of_t(root, sweep, label, key, fig_dir, name, title):
     plt.close(fig)
 
 
-def against_v(root, column, ylabel, fig_dir, name, title):
+def against_v(root, column, ylabel, fig_dir, name, title, log=False):
     runs = rows(root / "velocity-radius" / "summary.csv")
     if not runs:
         return
     by_r = defaultdict(list)
     for r in runs:
-        by_r[float(r["radius_mm"])].append((float(r["velocity_m_s"]), float(r[column])))
+        if float(r[column]) > 0:  # -1: not reached (e.g. the run stopped first)
+            by_r[float(r["radius_mm"])].append((float(r["velocity_m_s"]), float(r[column])))
     fig, ax = plt.subplots(figsize=(5.0, 3.6))
     for radius, pts in sorted(by_r.items()):
         pts.sort()
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, lw=1.2, label=f"R = {radius:g} mm")
+    if log:
+        ax.set_yscale("log")
     ax.set_xlabel("impact speed v (m/s)")
     ax.set_ylabel(ylabel)
     ax.set_title(title + f" (cell {float(runs[0]['cell_mm']):g} mm)", fontsize=10)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(fig_dir / name, dpi=100)
+    plt.close(fig)
+
+
+def max_upstream_speed(run_dir):
+    """The largest upstream wall speed while a cavity is open, from the run's series."""
+    best = 0.0
+    for r in rows(run_dir / "series.csv"):
+        for side in ("lower", "upper"):
+            if r[f"{side}_cavity_open"] == "1":
+                best = max(best, float(r[f"{side}_upstream_wall_speed_m_s"]))
+    return best
+
+
+def collapse_mode(root, fig_dir):
+    """The two measures of the collapse mode against v: the aspect at collapse (the threshold
+    criterion) and the jet speed over v."""
+    runs = rows(root / "velocity-radius" / "summary.csv")
+    if not runs:
+        return
+    by_r = defaultdict(list)
+    for r in runs:
+        v = float(r["velocity_m_s"])
+        aspect = float(r.get("lower_aspect_at_collapse") or -1)
+        by_r[float(r["radius_mm"])].append((v, aspect, max_upstream_speed(root / "velocity-radius" / r["run"]) / v))
+    fig, ax = plt.subplots(1, 2, figsize=(8.4, 3.4))
+    for radius, pts in sorted(by_r.items()):
+        pts.sort()
+        coll = [p for p in pts if p[1] > 0]
+        ax[0].plot([p[0] for p in coll], [p[1] for p in coll], "o-", ms=3, label=f"R = {radius:g} mm")
+        ax[1].plot([p[0] for p in pts], [p[2] for p in pts], "o-", ms=3, label=f"R = {radius:g} mm")
+    ax[0].axhline(1.25, color="grey", ls=":", lw=1)
+    ax[0].set_ylabel("width / axial chord at collapse")
+    ax[1].set_ylabel("max upstream wall speed / v")
+    for a in ax:
+        a.set_xlabel("impact speed v (m/s)")
+        a.legend(fontsize=7)
+    fig.suptitle(f"collapse mode (cell {float(runs[0]['cell_mm']):g} mm); dotted: the asymmetry cut", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(fig_dir / "collapse_mode.png", dpi=100)
     plt.close(fig)
 
 
@@ -132,8 +176,11 @@ def main():
            "D(t), R = 10 mm, strong shocks")
     against_v(root, "max_wall_relative_velocity_m_s", "max relative wall velocity (m/s)", fig_dir,
               "wall_velocity.png", "maximum relative wall velocity")
-    against_v(root, "max_hotspot_temperature_K", "hot-spot temperature (K)", fig_dir, "hot_spot.png",
-              "hot spot (peak of the 0.5 mm disc mean)")
+    against_v(root, "settled_hotspot_temperature_K", "hot-spot temperature (K)", fig_dir, "hot_spot.png",
+              "hot spot, 5 us after its peak")
+    against_v(root, "max_hotspot_temperature_K", "hot-spot temperature (K)", fig_dir, "hot_spot_peak.png",
+              "hot spot, peak (jet landing)", log=True)
+    collapse_mode(root, fig_dir)
     threshold(root, fig_dir)
     resolution(root, fig_dir)
     print(f"plot_sweeps.py: figures in {fig_dir}")
