@@ -298,7 +298,7 @@ int run(const settings& s, const run_files& io) {
     std::printf("  %llu steps in %.1f s\n", static_cast<unsigned long long>(sol.steps()), wall);
     std::printf("  D_max %.3f mm at %.2f us; secondary impact at %.2f us\n", sum.D_max * 1e3, us(sum.t_D_max),
                 us(sum.secondary_impact));
-    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after closure %.1f K, at the end "
+    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after it %.1f K, at the end "
                 "%.1f K (hottest particle %.1f K)\n",
                 sum.max_wall_relative_velocity, sum.max_hot_spot, sum.settled_hot_spot, sum.final_hot_spot,
                 sum.max_temperature);

@@ -146,13 +146,15 @@ def resolution(root, fig_dir):
     fig, ax = plt.subplots(1, 2, figsize=(8.0, 3.4))
     for v in sorted({float(r["velocity_m_s"]) for r in runs}):
         pts = sorted((float(r["cell_mm"]), float(r["D_max_mm"]), float(r["max_hotspot_temperature_K"]),
-                      float(r["final_hotspot_temperature_K"])) for r in runs if float(r["velocity_m_s"]) == v)
+                      float(r["settled_hotspot_temperature_K"])) for r in runs if float(r["velocity_m_s"]) == v)
         h = [p[0] for p in pts]
         ax[0].plot(h, [p[1] for p in pts], "o-", label=f"v = {v:g} m/s")
         ax[1].plot(h, [p[2] for p in pts], "o-", label=f"v = {v:g} m/s, peak")
-        ax[1].plot(h, [p[3] for p in pts], "s--", label=f"v = {v:g} m/s, at the end")
+        ax[1].plot(h, [p[3] for p in pts], "s--", label=f"v = {v:g} m/s, 5 us after the peak")
+    ax[1].set_yscale("log")
     for a, label in zip(ax, ("D_max (mm)", "hot-spot temperature (K)")):
         a.set_xscale("log")
+        a.set_xticks([0.5, 1, 2], ["0.5", "1", "2"])
         a.set_xlabel("cell size (mm)")
         a.set_ylabel(label)
         a.legend(fontsize=7)
