@@ -69,11 +69,14 @@ for t in 1 2; do
 done | tee "$out/phases.txt"
 load "throughput end / scaling start"
 
-# Scaling: the same number of particle-updates at each size (250 steps at 64,000 particles).
+# Scaling: the same number of particle-updates at each size (250 steps at 64,000 particles),
+# but no more simulated time than the reference run's 14 us (coarse grids take long steps and
+# the blocks would leave the grid).
 {
     echo "scene,scheme,cell_mm,particles,steps,threads,repeats,median_s,min_s,mups_median,mups_best"
     for cell in "${sizes[@]}"; do
-        steps=$(awk -v c="$cell" -v q="$quick" 'BEGIN { s = int(250 * (c / 0.5) ^ 2); if (s < 10) s = 10; if (q) s = 3; print s }')
+        steps=$(awk -v c="$cell" -v q="$quick" 'BEGIN { s = int(250 * (c / 0.5) ^ 2); m = int(1000 * 0.5 / c);
+                                                          if (s > m) s = m; if (s < 10) s = 10; if (q) s = 3; print s }')
         for scene in reference hmx; do
             for t in 1 2; do
                 "$bin/throughput/bench_throughput" --scene "$scene" --threads "$t" --cell "$cell" --steps "$steps" \

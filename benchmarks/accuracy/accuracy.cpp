@@ -33,11 +33,11 @@ const char* scheme_name(gimlet::update_scheme s) {
 /// u_x = A sin(kX) sin(wt), w = c k / 2, with the body force that makes it exact for gimlet's
 /// elastic material (the derivation is in tests/core/test_convergence.cpp).
 template <class Shape, class Real>
-void mms(gimlet::update_scheme scheme, int cells, int ppc) {
+void mms(gimlet::update_scheme scheme, int cells, int ppc, double amplitude_fraction, double courant) {
     using S = gimlet::space<2, Real>;
     using fields = gimlet::field_list<gimlet::fields::external_acceleration, reference_position>;
     using solver = gimlet::solver<S, Shape, gimlet::elastic_material, gimlet::contact::single_field, fields>;
-    const double length = 1.0, amplitude = 0.01 * length, rho0 = 1.0, h = length / cells;
+    const double length = 1.0, amplitude = amplitude_fraction * length, rho0 = 1.0, h = length / cells;
     gimlet::grid_spec<S> gs;
     gs.upper = typename S::vector(Real(length), Real(Shape::stencil * h));
     gs.cell = Real(h);
@@ -62,7 +62,7 @@ void mms(gimlet::update_scheme scheme, int cells, int ppc) {
             typename S::vector(Real(amplitude * omega * std::sin(k * double(ref[p][0]))), Real(0));
     }
     const double end = pi / (2 * omega);
-    const int steps = static_cast<int>(std::ceil(end / (0.2 * h / c)));
+    const int steps = static_cast<int>(std::ceil(end / (courant * h / c)));
     const double dt = end / steps;
     for (int n = 0; n < steps; ++n) {
         const double st = std::sin(omega * n * dt);
@@ -88,16 +88,16 @@ void mms(gimlet::update_scheme scheme, int cells, int ppc) {
 }
 
 template <class Real>
-void mms_all(const std::vector<int>& resolutions, const std::vector<int>& ppcs) {
+void mms_all(const std::vector<int>& resolutions, const std::vector<int>& ppcs, double a, double cfl) {
     using enum gimlet::update_scheme;
     for (const auto scheme : {musl, usl, usf})
         for (const int cells : resolutions)
             for (const int ppc : ppcs) {
-                mms<gimlet::shape::linear, Real>(scheme, cells, ppc);
-                mms<gimlet::shape::ugimp, Real>(scheme, cells, ppc);
-                mms<gimlet::shape::cpgimp, Real>(scheme, cells, ppc);
-                mms<gimlet::shape::bspline_quadratic, Real>(scheme, cells, ppc);
-                mms<gimlet::shape::bspline_cubic, Real>(scheme, cells, ppc);
+                mms<gimlet::shape::linear, Real>(scheme, cells, ppc, a, cfl);
+                mms<gimlet::shape::ugimp, Real>(scheme, cells, ppc, a, cfl);
+                mms<gimlet::shape::cpgimp, Real>(scheme, cells, ppc, a, cfl);
+                mms<gimlet::shape::bspline_quadratic, Real>(scheme, cells, ppc, a, cfl);
+                mms<gimlet::shape::bspline_cubic, Real>(scheme, cells, ppc, a, cfl);
             }
 }
 
@@ -132,15 +132,17 @@ int main(int argc, char** argv) try {
     bench::flags f(argc, argv);
     const std::string which = f.text("case", "all");
     const bool quick = f.number("quick", 0) != 0;
+    const double amplitude = f.number("amplitude", 0.01);
+    const double cfl = f.number("courant", 0.2);
     f.finish();
     std::printf("case,shape,scheme,precision,resolution,ppc,particles,steps,error,error2,seconds\n");
     if (which == "mms" || which == "all") {
         const std::vector<int> res = quick ? std::vector<int>{16} : std::vector<int>{16, 32, 64, 128};
         const std::vector<int> ppc = quick ? std::vector<int>{2} : std::vector<int>{1, 2, 3};
-        mms_all<double>(res, ppc);
-        mms_all<float>(res, ppc);
+        mms_all<double>(res, ppc, amplitude, cfl);
+        mms_all<float>(res, ppc, amplitude, cfl);
     }
-    if (which == "impact" || which == "all") impact(quick ? std::vector<double>{0.4} : std::vector<double>{0.4, 0.2, 0.1});
+    if (which == "impact" || which == "all") impact(quick ? std::vector<double>{0.4} : std::vector<double>{0.4, 0.2, 0.1, 0.05});
     return 0;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_accuracy: %s\n", e.what());

@@ -62,7 +62,7 @@ int main(int argc, char** argv) try {
     using namespace gimlet;
     const hmx_parts h;
     std::printf("variant,bytes_per_particle,particles,steps,threads,median_s,mups\n");
-    run<contact::distance>("full HMX (plasticity+heating+viscosity, distance contact)", materials::make_hmx(), cell, steps,
+    run<contact::distance>("full HMX: plasticity + heating + viscosity + distance contact", materials::make_hmx(), cell, steps,
                            repeats, threads);
     run<contact::distance>("heating off", material<strength::von_mises, mg, thermal::none, viscosity::bulk>{
                                               h.c.density, h.plastic(), h.eos(), {}, viscosity::bulk{}},
@@ -73,12 +73,12 @@ int main(int argc, char** argv) try {
     run<contact::distance>("plasticity off", material<strength::linear_elastic, mg, heating, viscosity::bulk>{
                                                  h.c.density, h.elastic(), h.eos(), h.heat(), viscosity::bulk{}},
                            cell, steps, repeats, threads);
-    run<contact::single_field>("single-field contact", materials::make_hmx(), cell, steps, repeats, threads);
-    run<contact::bardenhagen>("Bardenhagen multi-field contact", materials::make_hmx(), cell, steps, repeats, threads);
-    run<contact::single_field>("all off (elastic + Mie-Grueneisen, single field)",
+    run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
+    run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
+    run<contact::single_field>("all off: elastic + Mie-Grueneisen + single field",
                                material<strength::linear_elastic, mg>{h.c.density, h.elastic(), h.eos(), {}, {}}, cell,
                                steps, repeats, threads);
-    run<contact::single_field>("linear elastic + linear EOS, single field", bench::reference_material(), cell, steps,
+    run<contact::single_field>("reference physics: linear elastic + linear EOS + single field", bench::reference_material(), cell, steps,
                                repeats, threads);
     return 0;
 } catch (const std::exception& e) {

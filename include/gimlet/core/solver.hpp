@@ -318,6 +318,7 @@ private:
             check_particles();
             compute_stencils();
         }
+        lap(timings_.material_update);  // where the checks and the weights are done in every other step
         state_touched_ = false;
         stencils_ready_ = false;  // until this step's last pass has computed the next ones
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
@@ -425,6 +426,7 @@ private:
         GIMLET_OMP(parallel num_threads(threads()) if (parallel))
         for (const auto& slabs : colour_slabs_) {
             const auto count = static_cast<std::ptrdiff_t>(slabs.size());
+            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
             GIMLET_OMP(for schedule(dynamic, 1))
             for (std::ptrdiff_t j = 0; j < count; ++j) {
                 const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
