@@ -80,11 +80,11 @@ struct solver_options {
 /// solver::timings(). Fused loops are counted where they end up.
 struct step_timings {
     double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
-    double particle_to_grid = 0;   ///< clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
+    double particle_to_grid = 0;   ///< weights, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
     double grid_update = 0;        ///< nodal velocities, momentum update, walls
     double contact = 0;            ///< multi-field contact at nodes shared by bodies
     double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
-    double material_update = 0;    ///< velocity gradient, constitutive update, checks, next step's weights
+    double material_update = 0;    ///< velocity gradient, constitutive update, checks
     [[nodiscard]] double total() const noexcept {
         return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
     }
@@ -297,10 +297,10 @@ private:
     // ---- the step -----------------------------------------------------------------------
     //
     // The phases of PHYSICS.md section 1 are fused where their arithmetic allows it, so a step
-    // makes few passes over the particles and the nodes: one scatter (mass, momentum and, unless
-    // USF, forces), one node pass (v^n, momentum update, v^{n+1}), one gather (with MUSL's
-    // re-map scatter), one node pass for MUSL, and one particle pass that updates the material,
-    // checks the particle and computes its weights for the next step. Each quantity is computed
+    // makes few passes over the particles and the nodes: the weights, one scatter (mass,
+    // momentum and, unless USF, forces), one node pass (v^n, momentum update, v^{n+1}), one
+    // gather (with MUSL's re-map scatter), one node pass for MUSL, and one particle pass that
+    // updates the material and checks the particle. Each quantity is computed
     // with the same operations as in the unfused order; only the order in which a node sums its
     // particles' contributions is the scatter's (see for_each_particle_by_slab).
 
@@ -314,13 +314,14 @@ private:
         };
         // State changed between steps (by the user or a restart) is checked before it spreads
         // through the grid, so a bad value is blamed on its own particle, not on a neighbour.
-        if (steps_ == 0 || state_touched_ || !stencils_ready_) {
-            check_particles();
-            compute_stencils();
-        }
-        lap(timings_.material_update);  // where the checks and the weights are done in every other step
+        if (steps_ == 0 || state_touched_) check_particles();
+        lap(timings_.material_update);  // where the checks are done in every other step
         state_touched_ = false;
-        stencils_ready_ = false;  // until this step's last pass has computed the next ones
+        // The weights are recomputed from the positions every step, even though the previous
+        // step's last pass could have computed them: a caller may change positions through a
+        // reference to the store kept from an earlier particles() call, which no flag sees.
+        compute_stencils();
+        lap(timings_.particle_to_grid);
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
         dt_ = dt;
@@ -366,8 +367,7 @@ private:
         lap(timings_.material_update);
     }
 
-    // Weights at x^n of every particle (after a change of state between steps; otherwise the
-    // previous step's last pass computed them).
+    // Weights at x^n of every particle.
     void compute_stencils() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
@@ -582,9 +582,9 @@ private:
     }
 
     // The step's last particle pass: the constitutive update from the grid velocities (MUSL,
-    // USL), then what check_particles does (wrap, stop on a broken particle), then the weights
-    // for the next step. A material error is reported before a failed check, each for the
-    // lowest-numbered particle, as when the passes were separate.
+    // USL), then what check_particles does (wrap, stop on a broken particle). A material error
+    // is reported before a failed check, each for the lowest-numbered particle, as when the
+    // passes were separate.
     void finish_step(real dt, bool update_materials) {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
@@ -603,17 +603,12 @@ private:
                 }
             }
             grid_.wrap(x[i]);
-            if (!healthy(i)) {
-                first_bad = std::min(first_bad, k);
-                continue;
-            }
-            compute_stencil(i);
+            if (!healthy(i)) first_bad = std::min(first_bad, k);
         }
         if (error) std::rethrow_exception(error);
         ++steps_;
         time_ += dt;
         if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
-        stencils_ready_ = true;
     }
 
     // ---- sorting ------------------------------------------------------------------------
@@ -754,7 +749,6 @@ private:
     std::vector<M> materials_;
     store_type particles_;
     std::vector<stencil_type> stencils_;
-    bool stencils_ready_ = false;  // stencils_ hold the weights at the current positions
     // The scatter's slabs (see for_each_particle_by_slab): each particle's slab, the particles
     // of each slab, and the slabs of each colour.
     static constexpr int slab_rows = std::max(Sh::stencil - 1, 1);
