@@ -141,7 +141,10 @@ public:
     }
 
     /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
-    real step() { return step(stable_time_step()); }
+    real step() {
+        check_pending();  // a bad value set between steps is blamed on its particle, not on dt
+        return step(stable_time_step());
+    }
 
     /// Advance one step of the given size (s). Throws numerical_error if the run breaks down.
     real step(real dt) {
@@ -153,7 +156,9 @@ public:
     /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/).
     template <class... Observers>
     void run_until(real t_end, Observers&... observers) {
-        require(std::isfinite(double(t_end)), "end time (s)", double(t_end), "finite");
+        require(std::isfinite(double(t_end)) && t_end >= time_, "end time (s)", double(t_end),
+                "finite and >= the current time " + detail::to_text(double(time_)));
+        check_pending();
         (observers.maybe_call(*this), ...);
         while (time_ < t_end) {
             const real dt = std::min(stable_time_step(), t_end - time_);
@@ -312,11 +317,8 @@ private:
             into += std::chrono::duration<double>(now - mark).count();
             mark = now;
         };
-        // State changed between steps (by the user or a restart) is checked before it spreads
-        // through the grid, so a bad value is blamed on its own particle, not on a neighbour.
-        if (steps_ == 0 || state_touched_) check_particles();
+        check_pending();
         lap(timings_.material_update);  // where the checks are done in every other step
-        state_touched_ = false;
         // The weights are recomputed from the positions every step, even though the previous
         // step's last pass could have computed them: a caller may change positions through a
         // reference to the store kept from an earlier particles() call, which no flag sees.
@@ -695,6 +697,15 @@ private:
 
     // Stop on non-finite values, inverted particles or particles off the grid; report the
     // lowest-numbered offender so the message does not depend on the thread count.
+    // State set before the first step or changed between steps (by the user or a restart) is
+    // checked before anything uses it, so a bad value is blamed on its own particle, not on a
+    // neighbour or on the time step it would spoil.
+    void check_pending() {
+        if (!state_touched_) return;
+        check_particles();
+        state_touched_ = false;
+    }
+
     void check_particles() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
@@ -758,7 +769,7 @@ private:
     std::array<std::vector<int>, 3> colour_slabs_;
     step_timings timings_;
     real mass_cutoff_ = 0;
-    bool state_touched_ = false;
+    bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
     real dt_ = 0;
     // Multi-field contact only (empty otherwise): per field and node, the mass gradient and the
