@@ -272,6 +272,13 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
         {"time step", [] { elastic_solver(one_block()).step(0.0); }, "time step dt (s)", "finite and > 0"},
         {"time step", [] { elastic_solver(one_block()).step(not_a_number); }, "time step dt (s)", "finite and > 0"},
         {"end time", [] { elastic_solver(one_block()).run_until(not_a_number); }, "end time (s)", "finite"},
+        {"end time",
+         [] {
+             elastic_solver sol(one_block());
+             sol.resume_at(2.0, 10);
+             sol.run_until(1.0);
+         },
+         "end time (s)", "finite and >= the current time 2"},
         {"resume time", [] { elastic_solver(one_block()).resume_at(-1.0, 0); }, "resume time (s)", "finite and >= 0"},
         {"observer interval", [] { gimlet::diagnostics::every_time o(0.0, [](const auto&) {}); }, "observer interval (s)",
          "finite and > 0"},
