@@ -695,8 +695,6 @@ private:
         grid_.apply_walls(grid_.velocity);
     }
 
-    // Stop on non-finite values, inverted particles or particles off the grid; report the
-    // lowest-numbered offender so the message does not depend on the thread count.
     // State set before the first step or changed between steps (by the user or a restart) is
     // checked before anything uses it, so a bad value is blamed on its own particle, not on a
     // neighbour or on the time step it would spoil.
@@ -706,6 +704,8 @@ private:
         state_touched_ = false;
     }
 
+    // Stop on non-finite values, inverted particles or particles off the grid; report the
+    // lowest-numbered offender so the message does not depend on the thread count.
     void check_particles() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
