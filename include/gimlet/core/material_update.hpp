@@ -102,7 +102,9 @@ void update_material_point(const M& mat, const P& p,
     const tensor3 l3 = embed3<real, dim>(L);
     st.D = real(0.5) * (l3 + l3.transpose());
     st.W = real(0.5) * (l3 - l3.transpose());
-    st.length = std::pow(st.J * p.template get<fields::volume0>(), real(1) / real(dim));
+    const real volume = st.J * p.template get<fields::volume0>();
+    if constexpr (dim == 2) st.length = std::sqrt(volume);
+    else st.length = std::cbrt(volume);
 
     const tensor3 sigma_old = stress3(p);
     tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();

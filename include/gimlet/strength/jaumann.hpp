@@ -21,8 +21,12 @@ template <class Real>
 [[nodiscard]] Eigen::Matrix<Real, 3, 3> jaumann_rotate(const point_step<Real>& st,
                                                        const Eigen::Matrix<Real, 3, 3>& s) {
     using T3 = Eigen::Matrix<Real, 3, 3>;
-    const T3 half = Real(0.5) * st.dt * st.W;
-    const T3 q = (T3::Identity() - half).inverse() * (T3::Identity() + half);
+    // For a skew A = dt W/2 with axial vector a, the Cayley transform has the closed form
+    // (I - A)^-1 (I + A) = I + 2 (A + A^2) / (1 + |a|^2) (Rodrigues' form of the Cayley map),
+    // which avoids a 3x3 inverse per particle and step.
+    const T3 a = Real(0.5) * st.dt * st.W;
+    const Real a2 = a(2, 1) * a(2, 1) + a(0, 2) * a(0, 2) + a(1, 0) * a(1, 0);
+    const T3 q = T3::Identity() + (Real(2) / (Real(1) + a2)) * (a + a * a);
     return q * s * q.transpose();
 }
 
