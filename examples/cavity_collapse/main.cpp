@@ -134,6 +134,15 @@ double value_of(const gimlet::io::checkpoint_values& v, const std::string& key, 
     return it->second;
 }
 
+// The settings a resumed run must share with the checkpointed one (the grid is sized for the
+// end time); a checkpoint records them and a restart compares.
+gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
+    return {{"velocity_m_s", s.velocity},        {"radius_m", s.radius},
+            {"cell_m", s.cell},                  {"contact", double(int(s.contact))},
+            {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
+            {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end}};
+}
+
 template <class Contact>
 int run(const settings& s, const run_files& io) {
     gimlet::solver_options<S> opt;
@@ -159,16 +168,9 @@ int run(const settings& s, const run_files& io) {
     // What a checkpoint keeps besides the particles: where each output stands, the summary so
     // far, and the flags that must not change on a restart.
     auto save_values = [&] {
-        gimlet::io::checkpoint_values v{{"series_rows", double(rows)},
-                                        {"snapshots", double(snapshot)},
-                                        {"velocity_m_s", s.velocity},
-                                        {"radius_m", s.radius},
-                                        {"cell_m", s.cell},
-                                        {"contact", double(int(s.contact))},
-                                        {"sample_every_s", s.sample_every},
-                                        {"snapshot_every_s", s.snapshot_every},
-                                        {"hot_spot_radius_m", s.hot_spot_radius},
-                                        {"end_s", s.end}};
+        gimlet::io::checkpoint_values v = fixed_on_restart(s);
+        v["series_rows"] = double(rows);
+        v["snapshots"] = double(snapshot);
         mon.visit([&](const std::string& k, auto& x) { v["monitor." + k] = double(x); });
         sum.visit([&](const std::string& k, auto& x) { v["summary." + k] = double(x); });
         return v;
@@ -182,14 +184,7 @@ int run(const settings& s, const run_files& io) {
         pvd.emplace(pvd_path);
     } else {
         const auto v = gimlet::io::load_checkpoint(io.restart, sol);
-        for (const auto& [key, mine] : {std::pair<std::string, double>{"velocity_m_s", s.velocity},
-                                        {"radius_m", s.radius},
-                                        {"cell_m", s.cell},
-                                        {"contact", double(int(s.contact))},
-                                        {"sample_every_s", s.sample_every},
-                                        {"snapshot_every_s", s.snapshot_every},
-                                        {"hot_spot_radius_m", s.hot_spot_radius},
-                                        {"end_s", s.end}})
+        for (const auto& [key, mine] : fixed_on_restart(s))
             if (value_of(v, key, io.restart) != mine)
                 throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +
                                             std::to_string(value_of(v, key, io.restart)) + ", this run's is " +
