@@ -198,7 +198,7 @@ struct summary {
     static constexpr double closed_fraction = 0.05;
 
     double first_contact = -1;      // s
-    double separation = -1;         // s: D first > 0 after the first contact
+    double separation = -1;         // s: D first above a quarter spacing after the first contact
     double D_max = 0, t_D_max = -1; // m, s
     double secondary_impact = -1;   // s
     double max_wall_relative_velocity = 0;  // m/s
@@ -275,12 +275,14 @@ struct summary {
         max_temperature = std::max(max_temperature, r.max_temperature);
         for (int b = 0; b < 2 && s.radius > 0; ++b) {
             const auto& c = r.cavity[b];
-            const double chord = c.open ? c.axial_chord : 0.0;
-            if (collapse[b] < 0 && chord < s.radius) {
+            // The mode is read off an open chord: a sample where the axis shows no void (a
+            // particle crossing it for a moment) has no shape to compare.
+            if (collapse[b] < 0 && c.open && c.axial_chord < s.radius) {
                 collapse[b] = r.time;
-                aspect[b] = chord > 0 ? c.lateral_chord / chord : std::numeric_limits<double>::infinity();
+                aspect[b] = c.lateral_chord / c.axial_chord;
                 asymmetric[b] = aspect[b] > asymmetry_ratio;
             }
+            const double chord = c.open ? c.axial_chord : 0.0;
             if (closure[b] < 0 && chord < closed_fraction * 2 * s.radius) closure[b] = r.time;
         }
     }
