@@ -17,7 +17,6 @@
 #include <limits>
 #include <tuple>
 #include <type_traits>
-#include <typeinfo>
 #include <vector>
 
 namespace {
@@ -532,10 +531,16 @@ TEST_CASE("a user-written always-stick policy conserves momentum and sticks like
 
 }  // namespace
 
-// Regression: with MUSL the contact pass after the re-mapping must keep the constraint at the
-// nodes the grid update engaged. Dropping it there (the re-mapped velocities can look
-// separating) released stress energy twice: elastic blocks meeting from a 2-cell gap rebounded
-// with up to twice the energy they came in with. Elastic contact may lose energy, never gain it.
+// Regressions: contact may lose energy, never gain it. Elastic blocks meet from a 2-cell gap
+// and rebound.
+// - MUSL: the contact pass after the re-mapping must keep the constraint at the nodes the grid
+//   update engaged. Dropping it there (the re-mapped velocities can look separating) released
+//   stress energy twice: up to twice the energy the blocks came in with.
+// - USF: the stress is computed before the forces, so where contact acts must be decided before
+//   it and kept in the grid update. Deciding again after the forces (engaging nodes the stress
+//   saw free), or deciding on the sign of the start-of-step relative velocity (which chatters
+//   near release and leaves light fringe nodes free under the interface's compressive stress)
+//   gave Bardenhagen contact 1.81 and 1.12 times the initial energy.
 namespace {
 
 template <class Contact>
@@ -558,26 +563,29 @@ double energy_ratio_after_gap_collision(gimlet::update_scheme scheme) {
     opt.scheme = scheme;
     gimlet::solver<S2, gimlet::shape::ugimp, gimlet::elastic_material, Contact> sol(sc, opt);
     const double e0 = gimlet::diagnostics::kinetic_energy(sol);
-    sol.run_until(0.03);  // release wave back at 2L/c = 6.3 ms; separated well before 30 ms
-    const double ratio = (gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol)) / e0;
-    std::printf("contact from a gap, %s, scheme %d: (KE + IE) / KE0 = %.3f\n", typeid(Contact).name(), int(scheme), ratio);
-    return ratio;
+    double peak = 0;  // the largest (KE + IE) / KE0 over the run, not only at its end
+    while (sol.time() < 0.03) {  // release wave back at 2L/c = 6.3 ms; separated well before 30 ms
+        sol.step();
+        peak = std::max(peak, (gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol)) / e0);
+    }
+    const auto b = summarise(sol);
+    const char* name = std::is_same_v<Contact, gimlet::contact::distance> ? "distance" : "bardenhagen";
+    std::printf("contact from a gap, %-12s scheme %s: largest (KE + IE) / KE0 = %.3f; rebound speeds %.3f / %.3f\n",
+                name, scheme == gimlet::update_scheme::musl ? "MUSL" : scheme == gimlet::update_scheme::usl ? "USL " : "USF ",
+                peak, b[0].velocity()[1], b[1].velocity()[1]);
+    // They did collide and rebound (both velocities reversed), so the run tested a release.
+    CHECK(b[0].velocity()[1] < -0.5);
+    CHECK(b[1].velocity()[1] > 0.5);
+    return peak;
 }
 
 }  // namespace
 
-// 1 % above the start would already be created energy (the bug gave 1.27-1.96).
+// 1 % above the start would already be created energy (the defects gave 1.12-1.96).
 TEST_CASE("contact from a gap never creates energy", "[contact][verification]") {
     using gimlet::update_scheme;
-    for (auto scheme : {update_scheme::musl, update_scheme::usl, update_scheme::usf})
+    for (auto scheme : {update_scheme::musl, update_scheme::usl, update_scheme::usf}) {
         CHECK(energy_ratio_after_gap_collision<gimlet::contact::distance>(scheme) < 1.01);
-    for (auto scheme : {update_scheme::musl, update_scheme::usl})
         CHECK(energy_ratio_after_gap_collision<gimlet::contact::bardenhagen>(scheme) < 1.01);
-}
-
-// Known defect, kept visible: Bardenhagen contact with USF still creates energy when blocks meet
-// from a gap (1.8x here); the contact issue stays open for it. This test is expected to fail
-// until that is fixed, and then its tag must go.
-TEST_CASE("contact from a gap never creates energy: Bardenhagen with USF (known defect)", "[contact][!shouldfail]") {
-    CHECK(energy_ratio_after_gap_collision<gimlet::contact::bardenhagen>(gimlet::update_scheme::usf) < 1.01);
+    }
 }

@@ -17,9 +17,12 @@ namespace gimlet::contact {
 ///   policy makes the solver allocate and map exactly one field.
 /// - `required_fields`: field_list of the per-particle state it needs.
 /// - multi-field policies: `resolve(node)`, called at every node where two or more bodies have
-///   mass, after the grid momentum update (and again after MUSL's re-mapping); it corrects the
-///   bodies' nodal momenta in `node.momentum` (contact::node_view). A correction that moves
-///   momentum between bodies without creating any conserves total momentum.
+///   mass, once to decide where contact acts (on the velocities after the forces of the current
+///   stress) and again, with node_view::constrained, where a later pass of the step must keep
+///   that decision (docs/equations.md, Contact). It corrects the bodies' nodal momenta in
+///   `node.momentum` (contact::node_view) and should set `node.engaged` where it did (the
+///   solver also records nodes whose momenta it changed). A correction that moves momentum
+///   between bodies without creating any conserves total momentum.
 template <class C>
 concept Contact = requires {
     { C::multi_field } -> std::convertible_to<bool>;

@@ -28,10 +28,11 @@ struct node_view {
     const real* reach = nullptr;
     real cell = 0;                    ///< h
     real dt = 0;                      ///< time step
-    /// In: the node was engaged by this step's grid update and this is MUSL's re-mapping pass;
-    /// the policy must keep its normal constraint without re-testing whether the bodies approach
-    /// (the re-mapped velocities can look separating there, and dropping the constraint after
-    /// the forces were exchanged would release stress energy twice).
+    /// In: this step's deciding pass engaged the node and this is a later pass (MUSL's
+    /// re-mapping; USF's stress velocities and grid update). The policy must keep its normal
+    /// constraint without re-testing whether the bodies approach: the velocities can look
+    /// separating there, and dropping the constraint the stress or forces were computed with
+    /// creates energy (docs/equations.md, Contact).
     bool constrained = false;
     /// Out: the policy set this if it corrected the momenta.
     bool engaged = false;

@@ -330,7 +330,9 @@ private:
         const bool usf = options_.scheme == update_scheme::usf;
         bucket_by_slab();
         grid_.clear();
-        if (usf) scatter<false>();
+        // USF with contact also maps the forces of the current stress: they decide where contact
+        // acts in this step (contact_pass::trial).
+        if (usf && !multi_field) scatter<false>();
         else scatter<true>();
         if constexpr (multi_field) compute_reach();
         lap(timings_.particle_to_grid);
@@ -340,8 +342,11 @@ private:
             grid_.apply_walls(grid_.velocity);
             lap(timings_.grid_update);
             // The stress sees the same contact as the momentum update, or it would strain the
-            // bodies through each other.
-            if constexpr (multi_field) resolve_contact(false);
+            // bodies through each other: this pass decides where contact acts in this step.
+            if constexpr (multi_field) {
+                resolve_contact(contact_pass::trial);
+                std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
+            }
             lap(timings_.contact);
             update_material_points(dt, grid_.velocity);
             lap(timings_.material_update);
@@ -350,7 +355,11 @@ private:
         }
         update_grid_momentum(dt, !usf);
         lap(timings_.grid_update);
-        if constexpr (multi_field) resolve_contact(false);
+        // USF keeps the decision its stress was computed with: releasing a node there, or
+        // engaging one the stress saw free, makes the forces work on other velocities than the
+        // ones that strained the material (an energy source: Bardenhagen contact from a gap
+        // rebounded with 1.8x the energy it came in with).
+        if constexpr (multi_field) resolve_contact(usf ? contact_pass::keep : contact_pass::decide);
         lap(timings_.contact);
         const bool musl = options_.scheme == update_scheme::musl;
         grid_to_particles(dt, musl);
@@ -360,7 +369,7 @@ private:
             nodal_velocity(grid_.velocity);
             grid_.apply_walls(grid_.velocity);
             lap(timings_.grid_to_particle);
-            if constexpr (multi_field) resolve_contact(true);
+            if constexpr (multi_field) resolve_contact(contact_pass::remap);
             lap(timings_.contact);
         } else {
             lap(timings_.grid_to_particle);
@@ -660,33 +669,66 @@ private:
         });
     }
 
+    // Which contact pass of a step this is.
+    // - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
+    //   velocities after the forces of the current stress, and the nodes where it corrected
+    //   momenta are recorded.
+    // - `remap` (MUSL, after re-mapping): the normal constraint is kept at the recorded nodes
+    //   (node_view::constrained); elsewhere the policy decides freely.
+    // - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
+    //   velocities the forces of the current stress would give (grid_.force), and at the nodes
+    //   it engages the constraint is applied to the velocities the stress update will use. So
+    //   USF engages contact where MUSL would, while the contact force is compressive, and not
+    //   on the sign of a start-of-step relative velocity, which chatters near release.
+    // - `keep` (USF, after the grid update): the recorded nodes only, constraint kept, so the
+    //   forces work on the velocities that strained the material.
+    enum class contact_pass { decide, remap, trial, keep };
+
     // At every node shared by two or more bodies, let the contact policy correct the bodies'
-    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls. The grid
-    // update's pass records which nodes it engaged; MUSL's re-mapping pass keeps the constraint
-    // there (contact::node_view::constrained).
-    void resolve_contact(bool remap_pass) {
+    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls.
+    void resolve_contact(contact_pass pass) {
         const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
-        if (!remap_pass) engaged_.assign(nodes, 0);
+        if (pass == contact_pass::decide || pass == contact_pass::trial) engaged_.assign(nodes, 0);
         for (std::size_t node = 0; node < nodes; ++node) {
+            if (pass == contact_pass::keep && !engaged_[node]) continue;
             scratch_.clear();
             for (std::size_t f = 0; f < fields_n; ++f)
                 if (grid_.mass[f * nodes + node] > mass_cutoff_) scratch_.push_back(f);
             if (scratch_.size() < 2) continue;
             const std::size_t k = scratch_.size();
             ids_.resize(k), m_.resize(k), p_.resize(k), n_.resize(k), r_.resize(k);
-            for (std::size_t j = 0; j < k; ++j) {
-                const std::size_t e = scratch_[j] * nodes + node;
-                ids_[j] = static_cast<std::uint32_t>(scratch_[j]);
-                m_[j] = grid_.mass[e];
-                p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
-                const real len = gradient_norm_[e];
-                n_[j] = len > real(0) ? vector(mass_gradient_[e] / len) : vector::Zero();
-                r_[j] = reach_[e];
-            }
+            const bool trial = pass == contact_pass::trial;
+            auto load = [&](bool with_force) {
+                for (std::size_t j = 0; j < k; ++j) {
+                    const std::size_t e = scratch_[j] * nodes + node;
+                    ids_[j] = static_cast<std::uint32_t>(scratch_[j]);
+                    m_[j] = grid_.mass[e];
+                    p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
+                    if (with_force) p_[j] += dt_ * grid_.force[e];
+                    const real len = gradient_norm_[e];
+                    n_[j] = len > real(0) ? vector(mass_gradient_[e] / len) : vector::Zero();
+                    r_[j] = reach_[e];
+                }
+            };
+            load(trial);
             contact::node_view<S> view{k, ids_.data(), m_.data(), p_.data(), n_.data(), r_.data(), grid_.cell(), dt_};
-            view.constrained = remap_pass && engaged_[node];
+            view.constrained = (pass == contact_pass::remap || pass == contact_pass::keep) && engaged_[node];
             contact_.resolve(view);
-            if (!remap_pass) engaged_[node] = view.engaged ? 1 : 0;
+            if (pass == contact_pass::decide || trial) {
+                // Recorded also where a user policy corrected without setting the flag.
+                bool moved = view.engaged;
+                for (std::size_t j = 0; j < k && !moved; ++j) {
+                    const std::size_t e = scratch_[j] * nodes + node;
+                    moved = p_[j] != grid_.mass[e] * grid_.velocity[e] + (trial ? vector(dt_ * grid_.force[e]) : vector::Zero());
+                }
+                engaged_[node] = moved ? 1 : 0;
+            }
+            if (trial) {
+                if (!engaged_[node]) continue;
+                load(false);
+                view.constrained = true;
+                contact_.resolve(view);
+            }
             for (std::size_t j = 0; j < k; ++j) {
                 const std::size_t e = scratch_[j] * nodes + node;
                 grid_.velocity[e] = p_[j] / m_[j];
