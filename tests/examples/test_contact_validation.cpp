@@ -34,10 +34,29 @@ TEST_CASE("contact validation: the distance switch removes the interface pressur
     CHECK(single.peak_over_plateau > 2.0);
     CHECK(barden.peak_over_plateau > 2.0);
     // Distance-switched: the interface is no higher than the plateau's own noise, and well under
-    // half the spikes of the other two. (The issue's bound of 1.05 is below that noise at this
-    // coarse cell, where the plateau rings by about +-20 %: measured 1.14 here, 1.07 at 1 mm and
-    // 1.01 at the example's default 0.5 mm.)
+    // half the spikes of the other two. (The bound of 1.05 is below that noise at this cell,
+    // where the plateau rings by about +-20 %: measured 1.14 here; the next test holds it where
+    // the ringing is smaller than 5 %.)
     CHECK(dist.peak_over_plateau <= noise_ceiling(dist));
     CHECK(dist.peak_over_plateau < 0.5 * single.peak_over_plateau);
     CHECK(dist.peak_over_plateau < 0.5 * barden.peak_over_plateau);
+}
+
+// The issue's bound, interface peak over plateau at most 1.05 for the distance switch, needs a
+// cell at which the shocked plateau itself is flat to better than 5 %: the FLIP ringing behind
+// the shock (docs/reproduction.md, Known differences) puts cell-averaged values of 1.2-1.5 times
+// the plateau into the plateau at 2 and 1 mm (the distance policy reads 1.14 and 1.07 there).
+// 0.5 mm, the example's default (80 x 100 cells per block), is the coarsest power-of-two cell
+// where it is; the full validation run, distance policy only (12 s on one core in Release).
+TEST_CASE("contact validation: the distance switch's interface peak is within 5 % of the plateau at 0.5 mm",
+          "[examples][contact][verification]") {
+    contact_validation::settings s;
+    s.cell = 0.5e-3;
+    const auto dist = contact_validation::run<gimlet::contact::distance>(s, "distance");
+    std::printf("contact validation (0.5 mm cells, 14 us): distance     interface peak / plateau %.3f (particles "
+                "%.3f), plateau %.3e Pa\n",
+                dist.peak_over_plateau, dist.particle_peak_over_plateau, dist.plateau);
+    // Rankine-Hugoniot plateau for HMX at 300 m/s is about 2.0 GPa (as above, 10 %).
+    CHECK(dist.plateau == Approx(2.0e9).epsilon(0.1));
+    CHECK(dist.peak_over_plateau <= 1.05);
 }

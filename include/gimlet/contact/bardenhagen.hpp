@@ -15,18 +15,17 @@ namespace gimlet::contact {
 
 namespace detail {
 
-/// The Bardenhagen et al. (2000) correction of body `a` against the centre of mass at one node,
-/// along the unit normal n (outward of a), with Coulomb coefficient mu; returns the velocity
-/// change of body a, or zero if a is not approaching (PHYSICS.md section 3):
+/// The Bardenhagen et al. (2000) correction of body `a` against the centre of mass of a pair at
+/// one node, along the unit normal n (outward of a), with Coulomb coefficient mu; returns the
+/// velocity change of body a, or zero if a is not approaching (PHYSICS.md section 3):
 /// approaching if (v_a - v_cm) . n > 0; then the normal relative velocity is removed and the
 /// tangential one reduced by at most mu times the normal change (mu = inf: no slip).
-/// With `constrained` the normal constraint is kept even if the body is separating (MUSL's
-/// re-mapping pass at a node the grid update engaged; see node_view::constrained).
+/// With `kept` the normal constraint holds even if the body is separating
+/// (node_view::kept_pairs). Sets `engaged` if it corrects.
 template <class Vector, class Real>
-[[nodiscard]] Vector coulomb_correction(const Vector& relative, const Vector& n, Real mu, bool constrained,
-                                        bool& engaged) {
+[[nodiscard]] Vector coulomb_correction(const Vector& relative, const Vector& n, Real mu, bool kept, bool& engaged) {
     const Real approach = relative.dot(n);
-    if (!(approach > Real(0)) && !constrained) return Vector::Zero();
+    if (!(approach > Real(0)) && !kept) return Vector::Zero();
     engaged = true;
     const Vector tangential = relative - approach * n;
     const Real slip = tangential.norm();
@@ -35,36 +34,34 @@ template <class Vector, class Real>
     return dv;
 }
 
-/// Apply the correction at a node (and record in node.engaged whether it did). Two bodies share one normal, the average of their own
-/// (n = (n^A - n^B)/|n^A - n^B|), and exchange equal and opposite momenta, so momentum is
-/// conserved to round-off. With more bodies each is corrected against the centre of mass along
-/// its own normal (Bardenhagen et al. 2000, eq. 19). `engaged(a, b)` can veto a pair.
-template <Space S, class Engaged>
-void correct(node_view<S>& node, typename S::real mu, Engaged engaged) {
+/// Apply the correction at a node to every pair of bodies there that `in_contact(a, b)` admits
+/// and the pass allows (node_view::kept_pairs, open_pairs), recording the pairs it corrected in
+/// node.engaged_pairs. A pair shares one normal, the average of its two bodies' own
+/// (n = (n^a - n^b)/|n^a - n^b|), and exchanges equal and opposite momenta, so momentum is
+/// conserved to round-off however many bodies meet. Two bodies: the correction of Bardenhagen
+/// et al. (2000). More: pairs in turn, in the node's body order, each against its own centre of
+/// mass (Bardenhagen et al. correct each body against the node's centre of mass along its own
+/// normal, their eq. 19, which moves momentum into or out of the node where the normals of
+/// three bodies do not cancel).
+template <Space S, class InContact>
+void correct(node_view<S>& node, typename S::real mu, InContact in_contact) {
     using real = typename S::real;
     using vector = typename S::vector;
-    real m_total = 0;
-    vector p_total = vector::Zero();
-    for (std::size_t b = 0; b < node.count; ++b) m_total += node.mass[b], p_total += node.momentum[b];
-    const vector v_cm = p_total / m_total;
-    if (node.count == 2) {
-        const vector d = node.normal[0] - node.normal[1];
-        const real len = d.norm();
-        if (!(len > real(0)) || !engaged(0, 1)) return;
-        const vector n = d / len;
-        const vector dv =
-            coulomb_correction(vector(node.momentum[0] / node.mass[0] - v_cm), n, mu, node.constrained, node.engaged);
-        node.momentum[0] += node.mass[0] * dv;
-        node.momentum[1] -= node.mass[0] * dv;
-        return;
-    }
-    for (std::size_t b = 0; b < node.count; ++b) {
-        bool any = false;
-        for (std::size_t o = 0; o < node.count; ++o) any = any || (o != b && engaged(b, o));
-        if (!any) continue;
-        const vector dv = coulomb_correction(vector(node.momentum[b] / node.mass[b] - v_cm), node.normal[b], mu,
-                                             node.constrained, node.engaged);
-        node.momentum[b] += node.mass[b] * dv;
+    for (std::size_t a = 0; a + 1 < node.count; ++a) {
+        for (std::size_t b = a + 1; b < node.count; ++b) {
+            const bool kept = node.kept(a, b);
+            if (!kept && !node.open(a, b)) continue;
+            const vector n = node.pair_normal(a, b);
+            if (n.isZero() || !in_contact(a, b)) continue;
+            const real m_ab = node.mass[a] + node.mass[b];
+            const vector v_cm = (node.momentum[a] + node.momentum[b]) / m_ab;
+            bool engaged = false;
+            const vector dv = coulomb_correction(vector(node.momentum[a] / node.mass[a] - v_cm), n, mu, kept, engaged);
+            if (!engaged) continue;
+            node.momentum[a] += node.mass[a] * dv;
+            node.momentum[b] -= node.mass[a] * dv;
+            node.engaged_pairs |= node.pair_bit(a, b);
+        }
     }
 }
 

@@ -12,14 +12,17 @@ namespace gimlet::contact {
 /// where the two bodies are close there, and only while they approach (the implied normal force
 /// is compressive; when it would turn tensile the correction is dropped and the bodies separate).
 ///
-/// **How the gap is measured.** At node i, each body's outward normal n^b comes from its mass
-/// gradient. For each body, the particle centres that map to node i are projected on n^b and the
-/// furthest is kept (node_view::reach). With the two bodies' normals opposite, the distance
-/// between the facing particle centres along the normal is gap = -(reach^A + reach^B). Contact
-/// acts where gap <= h/2: touching bodies with 2x2 particles per cell have facing centres
-/// exactly h/2 apart, so contact starts when the particle domains meet, not when the bodies
-/// first share a node (up to two cells earlier). The paper prints the criterion with max/min
-/// signs that do not make a distance; this is its meaning.
+/// **How the gap is measured.** At node i, bodies a and b share the normal
+/// n_ab = (n^a - n^b)/|n^a - n^b| from their mass gradients (the one their correction uses).
+/// Each body's particle centres that map to node i are projected on it, from the node, and the
+/// furthest towards the other body is kept: reach_ab = max_{p in a} (x_p - x_i) . n_ab and
+/// reach_ba = max_{q in b} (x_q - x_i) . (-n_ab). The distance between the facing particle
+/// centres along n_ab is gap = -(reach_ab + reach_ba) (node_view::gap), the paper's R_i^pq.
+/// Contact acts where gap <= h/2: touching bodies with 2x2 particles per cell have facing
+/// centres exactly h/2 apart, so contact starts when the particle domains meet, not when the
+/// bodies first share a node (up to two cells earlier). The paper prints the criterion with
+/// max/min signs that do not make a distance; this is its meaning. Where three or more bodies
+/// meet, each pair is measured along its own normal.
 class distance {
 public:
     static constexpr bool multi_field = true;
@@ -38,9 +41,7 @@ public:
         using real = typename S::real;
         // A small tolerance: touching bodies sit exactly at h/2 and must count as in contact.
         const real limit = real(gap_) * node.cell * (real(1) + real(1e-9));
-        detail::correct(node, real(mu_), [&](std::size_t a, std::size_t b) {
-            return -(node.reach[a] + node.reach[b]) <= limit;
-        });
+        detail::correct(node, real(mu_), [&](std::size_t a, std::size_t b) { return node.gap(a, b) <= limit; });
     }
 
     [[nodiscard]] double friction() const noexcept { return mu_; }

@@ -135,7 +135,6 @@ public:
             // One velocity field per body (Bardenhagen et al. 2000); a single-field policy keeps one.
             grid_.set_field_count(materials_.size());
             mass_gradient_.assign(grid_.entries(), vector::Zero());
-            reach_.assign(grid_.entries(), real(0));
         }
         set_up_slabs();
     }
@@ -334,7 +333,7 @@ private:
         // acts in this step (contact_pass::trial).
         if (usf && !multi_field) scatter<false>();
         else scatter<true>();
-        if constexpr (multi_field) compute_reach();
+        if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
         if (usf) {
             nodal_velocity(grid_.velocity_old);
@@ -648,89 +647,128 @@ private:
 
     // ---- multi-field contact ------------------------------------------------------------
 
-    // Each body's furthest particle centre along its own outward normal at every node its
-    // particles map to (contact::node_view::reach), from the positions at the start of the step.
-    void compute_reach() {
-        std::fill(reach_.begin(), reach_.end(), -std::numeric_limits<real>::infinity());
-        // |sum m_p G_ip| once per node, not once per particle and node.
-        gradient_norm_.resize(mass_gradient_.size());
-        const auto n = static_cast<std::ptrdiff_t>(mass_gradient_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k)
-            gradient_norm_[std::size_t(k)] = mass_gradient_[std::size_t(k)].norm();
+    // The nodes where two or more bodies have mass above the cut-off, with each body's outward
+    // normal, each pair's normal and each body's furthest particle centre along it
+    // (contact::node_view::reach), from the positions at the start of the step. Only these
+    // nodes take part in contact, and the masses do not change within a step.
+    void find_shared_nodes() {
+        const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
+        shared_index_.assign(nodes, -1);
+        shared_.clear(), shared_body_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
+        for (std::size_t node = 0; node < nodes; ++node) {
+            const std::size_t first = shared_body_.size();
+            for (std::size_t f = 0; f < fields_n; ++f)
+                if (grid_.mass[f * nodes + node] > mass_cutoff_) shared_body_.push_back(static_cast<std::uint32_t>(f));
+            const std::size_t k = shared_body_.size() - first;
+            if (k < 2) {
+                shared_body_.resize(first);
+                continue;
+            }
+            shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
+            shared_.push_back({node, first, k, shared_pair_normal_.size()});
+            for (std::size_t j = 0; j < k; ++j) {
+                const vector& g = mass_gradient_[shared_body_[first + j] * nodes + node];
+                const real len = g.norm();
+                shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
+            }
+            // n_ab = (n^a - n^b)/|n^a - n^b| (contact::detail::correct uses the same), so n_ba = -n_ab.
+            for (std::size_t a = 0; a < k; ++a)
+                for (std::size_t b = 0; b < k; ++b) {
+                    const vector d = shared_normal_[first + a] - shared_normal_[first + b];
+                    const real len = d.norm();
+                    shared_pair_normal_.push_back(a != b && len > real(0) ? vector(d / len) : vector::Zero());
+                }
+        }
+        shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
+        engaged_.assign(shared_.size(), 0);
+        if (shared_.empty()) return;
+        // Particles of one node are visited by one thread at a time (slab colouring), and a
+        // maximum does not depend on the order: the result is the same for any thread count.
         for_each_particle_by_slab([&](std::size_t i) {
-            const std::size_t base = field_base(i);
+            const auto body = static_cast<std::uint32_t>(field_base(i) / nodes);
             stencils_[i].for_each_offset(grid_.cell(), [&](std::size_t node, const vector& r) {
-                const vector& grad = mass_gradient_[base + node];
-                const real len = gradient_norm_[base + node];
-                if (!(len > real(0))) return;
-                reach_[base + node] = std::max(reach_[base + node], r.dot(grad) / len);
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0) return;
+                const shared_node& sn = shared_[std::size_t(s)];
+                std::size_t a = 0;
+                while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+                if (a == sn.count) return;  // below the cut-off at this node
+                for (std::size_t b = 0; b < sn.count; ++b) {
+                    if (b == a) continue;
+                    const std::size_t slot = sn.first_pair + a * sn.count + b;
+                    shared_reach_[slot] = std::max(shared_reach_[slot], r.dot(shared_pair_normal_[slot]));
+                }
             });
         });
     }
 
-    // Which contact pass of a step this is.
+    // Which contact pass of a step this is. Each node records the pairs of bodies the deciding
+    // pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
     // - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
-    //   velocities after the forces of the current stress, and the nodes where it corrected
-    //   momenta are recorded.
-    // - `remap` (MUSL, after re-mapping): the normal constraint is kept at the recorded nodes
-    //   (node_view::constrained); elsewhere the policy decides freely.
+    //   velocities after the forces of the current stress.
+    // - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
+    //   (node_view::kept_pairs); the policy decides the others freely.
     // - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
-    //   velocities the forces of the current stress would give (grid_.force), and at the nodes
-    //   it engages the constraint is applied to the velocities the stress update will use. So
-    //   USF engages contact where MUSL would, while the contact force is compressive, and not
-    //   on the sign of a start-of-step relative velocity, which chatters near release.
-    // - `keep` (USF, after the grid update): the recorded nodes only, constraint kept, so the
+    //   velocities the forces of the current stress would give (grid_.force); then the pairs it
+    //   engaged are constrained on the velocities the stress update will use. So USF engages
+    //   contact where MUSL would, while the contact force is compressive, and not on the sign of
+    //   a start-of-step relative velocity, which chatters near release.
+    // - `keep` (USF, after the grid update): the recorded pairs only, constraint kept, so the
     //   forces work on the velocities that strained the material.
     enum class contact_pass { decide, remap, trial, keep };
 
     // At every node shared by two or more bodies, let the contact policy correct the bodies'
     // momenta (PHYSICS.md section 3), then refresh their velocities and the walls.
     void resolve_contact(contact_pass pass) {
-        const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
-        if (pass == contact_pass::decide || pass == contact_pass::trial) engaged_.assign(nodes, 0);
-        for (std::size_t node = 0; node < nodes; ++node) {
-            if (pass == contact_pass::keep && !engaged_[node]) continue;
-            scratch_.clear();
-            for (std::size_t f = 0; f < fields_n; ++f)
-                if (grid_.mass[f * nodes + node] > mass_cutoff_) scratch_.push_back(f);
-            if (scratch_.size() < 2) continue;
-            const std::size_t k = scratch_.size();
-            ids_.resize(k), m_.resize(k), p_.resize(k), n_.resize(k), r_.resize(k);
-            const bool trial = pass == contact_pass::trial;
+        const std::size_t nodes = grid_.size();
+        const bool trial = pass == contact_pass::trial, deciding = trial || pass == contact_pass::decide;
+        for (std::size_t s = 0; s < shared_.size(); ++s) {
+            if (pass == contact_pass::keep && engaged_[s] == 0) continue;
+            const shared_node& sn = shared_[s];
+            const std::size_t k = sn.count;
+            m_.resize(k), p_.resize(k);
             auto load = [&](bool with_force) {
                 for (std::size_t j = 0; j < k; ++j) {
-                    const std::size_t e = scratch_[j] * nodes + node;
-                    ids_[j] = static_cast<std::uint32_t>(scratch_[j]);
+                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
                     m_[j] = grid_.mass[e];
                     p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
                     if (with_force) p_[j] += dt_ * grid_.force[e];
-                    const real len = gradient_norm_[e];
-                    n_[j] = len > real(0) ? vector(mass_gradient_[e] / len) : vector::Zero();
-                    r_[j] = reach_[e];
                 }
             };
             load(trial);
-            contact::node_view<S> view{k, ids_.data(), m_.data(), p_.data(), n_.data(), r_.data(), grid_.cell(), dt_};
-            view.constrained = (pass == contact_pass::remap || pass == contact_pass::keep) && engaged_[node];
+            contact::node_view<S> view{k,
+                                       shared_body_.data() + sn.first_body,
+                                       m_.data(),
+                                       p_.data(),
+                                       shared_normal_.data() + sn.first_body,
+                                       shared_reach_.data() + sn.first_pair,
+                                       grid_.cell(),
+                                       dt_};
+            if (!deciding) {
+                view.kept_pairs = engaged_[s];
+                view.open_pairs = pass == contact_pass::remap ? ~engaged_[s] : std::uint64_t(0);
+            }
             contact_.resolve(view);
-            if (pass == contact_pass::decide || trial) {
-                // Recorded also where a user policy corrected without setting the flag.
-                bool moved = view.engaged;
-                for (std::size_t j = 0; j < k && !moved; ++j) {
-                    const std::size_t e = scratch_[j] * nodes + node;
-                    moved = p_[j] != grid_.mass[e] * grid_.velocity[e] + (trial ? vector(dt_ * grid_.force[e]) : vector::Zero());
+            if (deciding) {
+                std::uint64_t pairs = view.engaged_pairs;
+                // A user policy that corrects without saying which pairs: all of them.
+                for (std::size_t j = 0; j < k && pairs == 0; ++j) {
+                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
+                    const vector before = grid_.mass[e] * grid_.velocity[e] + (trial ? vector(dt_ * grid_.force[e]) : vector::Zero());
+                    if (p_[j] != before) pairs = ~std::uint64_t(0);
                 }
-                engaged_[node] = moved ? 1 : 0;
+                engaged_[s] = pairs;
             }
             if (trial) {
-                if (!engaged_[node]) continue;
+                if (engaged_[s] == 0) continue;
                 load(false);
-                view.constrained = true;
+                view.kept_pairs = engaged_[s];
+                view.open_pairs = 0;
+                view.engaged_pairs = 0;
                 contact_.resolve(view);
             }
             for (std::size_t j = 0; j < k; ++j) {
-                const std::size_t e = scratch_[j] * nodes + node;
+                const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
                 grid_.velocity[e] = p_[j] / m_[j];
             }
         }
@@ -814,15 +852,23 @@ private:
     bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
     real dt_ = 0;
-    // Multi-field contact only (empty otherwise): per field and node, the mass gradient and the
-    // reach, plus scratch space for one node's bodies.
+    // Multi-field contact only (empty otherwise): per field and node, the mass gradient; the
+    // nodes shared by two or more bodies (find_shared_nodes) with, per shared node, its bodies
+    // and their normals (shared_body_, shared_normal_ from first_body), its pairs' normals and
+    // reaches (count x count from first_pair) and the pairs engaged by the step's deciding pass;
+    // scratch space for one node's masses and momenta.
+    struct shared_node {
+        std::size_t node, first_body, count, first_pair;
+    };
     std::vector<vector> mass_gradient_;
-    std::vector<real> reach_, gradient_norm_;
-    std::vector<std::size_t> scratch_;
-    std::vector<char> engaged_;
-    std::vector<std::uint32_t> ids_;
-    std::vector<real> m_, r_;
-    std::vector<vector> p_, n_;
+    std::vector<std::ptrdiff_t> shared_index_;
+    std::vector<shared_node> shared_;
+    std::vector<std::uint32_t> shared_body_;
+    std::vector<vector> shared_normal_, shared_pair_normal_;
+    std::vector<real> shared_reach_;
+    std::vector<std::uint64_t> engaged_;
+    std::vector<real> m_;
+    std::vector<vector> p_;
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };
