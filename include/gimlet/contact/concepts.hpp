@@ -18,11 +18,12 @@ namespace gimlet::contact {
 /// - `required_fields`: field_list of the per-particle state it needs.
 /// - multi-field policies: `resolve(node)`, called at every node where two or more bodies have
 ///   mass, once to decide where contact acts (on the velocities after the forces of the current
-///   stress) and again, with node_view::constrained, where a later pass of the step must keep
-///   that decision (docs/equations.md, Contact). It corrects the bodies' nodal momenta in
-///   `node.momentum` (contact::node_view) and should set `node.engaged` where it did (the
-///   solver also records nodes whose momenta it changed). A correction that moves momentum
-///   between bodies without creating any conserves total momentum.
+///   stress) and again where a later pass of the step must keep that decision
+///   (node_view::kept_pairs; docs/equations.md, Contact). It corrects the bodies' nodal momenta
+///   in `node.momentum` (contact::node_view) and should record the pairs it corrected in
+///   `node.engaged_pairs` (the solver records every pair where it changed momenta without). A
+///   correction that moves momentum between bodies without creating any conserves total
+///   momentum.
 template <class C>
 concept Contact = requires {
     { C::multi_field } -> std::convertible_to<bool>;
