@@ -754,7 +754,8 @@ private:
                 // A user policy that corrects without saying which pairs: all of them.
                 for (std::size_t j = 0; j < k && pairs == 0; ++j) {
                     const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
-                    const vector before = grid_.mass[e] * grid_.velocity[e] + (trial ? vector(dt_ * grid_.force[e]) : vector::Zero());
+                    vector before = grid_.mass[e] * grid_.velocity[e];
+                    if (trial) before += dt_ * grid_.force[e];
                     if (p_[j] != before) pairs = ~std::uint64_t(0);
                 }
                 engaged_[s] = pairs;
