@@ -63,10 +63,10 @@ template <class Solver>
     // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
     std::vector<std::size_t> start(total + 1, 0), order(n);
     std::vector<std::size_t> bin(n);
+    std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
     for (std::size_t i = 0; i < n; ++i) {
-        std::array<std::size_t, dim> b{};
-        for (int d = 0; d < dim; ++d) b[d] = bin_of(x[i], d);
-        bin[i] = flat(b);
+        for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
+        bin[i] = flat(cell[i]);
         ++start[bin[i] + 1];
     }
     for (std::size_t k = 0; k < total; ++k) start[k + 1] += start[k];
@@ -79,8 +79,7 @@ template <class Solver>
     r.temperature = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
         r.max_temperature = std::max(r.max_temperature, double(T[i]));
-        std::array<std::size_t, dim> b{};
-        for (int d = 0; d < dim; ++d) b[d] = bin_of(x[i], d);
+        const auto& b = cell[i];
         double mass = 0, heat = 0;
         std::size_t count = 0;
         std::array<int, dim> off{};
