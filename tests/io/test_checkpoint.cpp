@@ -24,7 +24,7 @@ namespace {
 // Two HMX blocks 8 mm x 8 mm, 0.5 mm apart, colliding at +-300 m/s, a cavity of radius
 // `cavity` (m) in the upper one; periodic in x, free in y. 0.5 mm cells, 2x2 particles per cell
 // (about 1800 particles). The blocks touch after about 13 steps.
-gimlet::scene::scene<S, hmx> two_blocks(double cavity = 2e-3) {
+gimlet::scene::scene<S, hmx> two_blocks(double cavity = 2e-3, double density = 1900.0) {
     constexpr double w = 8e-3, gap = 0.5e-3;
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector(0.0, -2e-3);
@@ -32,7 +32,9 @@ gimlet::scene::scene<S, hmx> two_blocks(double cavity = 2e-3) {
     gs.cell = 0.5e-3;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, hmx> sc(gs);
-    const auto mat = gimlet::materials::make_hmx();
+    gimlet::materials::hmx_constants constants;
+    constants.density = density;
+    const auto mat = gimlet::materials::make_hmx(constants);
     sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(w, w)), mat, S::vector(0.0, 300.0), 2, "lower");
     const gimlet::scene::box<S> upper(S::vector(0.0, w + gap), S::vector(w, 2 * w + gap));
     sc.add_body(gimlet::scene::difference(upper, gimlet::scene::ball<S>(S::vector(0.5 * w, 1.5 * w + gap), cavity)),
@@ -188,6 +190,26 @@ TEST_CASE("checkpoint: damaged or mismatched files are refused whole, naming the
         expect_refused(good, smaller,
                        "particle count differs: the file holds " + std::to_string(saved.particles().size()) +
                            " particles, the solver " + std::to_string(smaller.particles().size()));
+    }
+    SECTION("another scene with the same particle count") {
+        // A denser material: every position and the particle count stay, every mass changes.
+        hmx_solver other(two_blocks(2e-3, 1910.0));
+        REQUIRE(other.particles().size() == saved.particles().size());
+        expect_refused(good, other, "its particles are not the solver's scene: bodies, masses or reference volumes "
+                                    "differ");
+        const auto before = state_bytes(other);
+        CHECK_THROWS(gimlet::io::load_checkpoint(good, other));
+        CHECK(state_bytes(other) == before);
+    }
+    SECTION("the same scene, particles sorted by cell: accepted") {
+        gimlet::solver_options<S> opt;
+        opt.sort_interval = 1;
+        hmx_solver sorted(scene, opt);
+        steps(sorted, 3);
+        const auto sorted_file = dir / "sorted.ckpt";
+        gimlet::io::save_checkpoint(sorted_file, sorted, {});
+        hmx_solver fresh(scene, opt);
+        CHECK_NOTHROW(gimlet::io::load_checkpoint(sorted_file, fresh));
     }
     SECTION("another field layout (a solver of another type)") {
         // Linear MPM keeps no particle domain size.

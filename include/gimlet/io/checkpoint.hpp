@@ -38,6 +38,7 @@
 ///    size-8     8  u64 64-bit FNV-1a of every byte before it
 
 #include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
 #include "gimlet/io/detail/file.hpp"
 #include "gimlet/io/detail/text.hpp"
 
@@ -53,6 +54,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -408,7 +410,8 @@ void save_checkpoint(const std::filesystem::path& path, const Solver& solver, co
 ///
 /// The whole file is read and checked before the solver is touched: a file that is missing,
 /// truncated, corrupt (checksum), of another version or byte order, or whose dimension, real
-/// type, particle fields or particle count differ from the solver's throws checkpoint_error
+/// type, particle fields or particle count differ from the solver's, or whose particles' bodies,
+/// masses or reference volumes are not the solver's (another scene), throws checkpoint_error
 /// naming the file and the problem, and leaves the solver as it was.
 template <Checkpointable Solver>
 checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& solver) {
@@ -431,6 +434,43 @@ checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& sol
         throw checkpoint_error(path, "particle count differs: the file holds " + std::to_string(info.particles) +
                                          " particles, the solver " + std::to_string(current.size()) +
                                          " (build the solver from the same scene as the saved run)");
+
+    // A run never changes a particle's body, mass or reference volume, so the file's must be
+    // those of the solver's scene (in any order: sorting by cell permutes the particles).
+    {
+        using real = typename S::real;
+        using key = std::tuple<std::uint32_t, real, real>;
+        std::vector<std::uint32_t> body(current.size());
+        std::vector<real> mass(current.size()), volume(current.size());
+        const char* at = bytes.data() + parsed.columns_at;
+        current.for_each_column([&](auto tag, const auto& column) {
+            using F = decltype(tag);
+            using T = typename std::remove_cvref_t<decltype(column)>::value_type;
+            if constexpr (std::is_same_v<F, fields::body>) detail::read_column(at, body);
+            if constexpr (std::is_same_v<F, fields::mass>) detail::read_column(at, mass);
+            if constexpr (std::is_same_v<F, fields::volume0>) detail::read_column(at, volume);
+            at += column.size() * detail::element_bytes<T>();
+        });
+        std::vector<key> in_file(current.size()), in_solver(current.size());
+        const auto& b = current.template column<fields::body>();
+        const auto& m = current.template column<fields::mass>();
+        const auto& v = current.template column<fields::volume0>();
+        for (std::size_t i = 0; i < current.size(); ++i) {
+            in_file[i] = {body[i], mass[i], volume[i]};
+            in_solver[i] = {b[i], m[i], v[i]};
+        }
+        std::sort(in_file.begin(), in_file.end());
+        std::sort(in_solver.begin(), in_solver.end());
+        const auto differ = std::mismatch(in_file.begin(), in_file.end(), in_solver.begin());
+        if (differ.first != in_file.end())
+            throw checkpoint_error(
+                path, "its particles are not the solver's scene: bodies, masses or reference volumes differ (e.g. a "
+                      "particle of body " + std::to_string(std::get<0>(*differ.first)) + " with mass " +
+                          gimlet::detail::to_text(std::get<1>(*differ.first)) + " and volume " +
+                          gimlet::detail::to_text(std::get<2>(*differ.first)) +
+                          " in the file has no match in the solver; build the solver from the same scene as the "
+                          "saved run)");
+    }
 
     // Nothing can fail from here on: the copy is all or nothing.
     const char* at = bytes.data() + parsed.columns_at;
