@@ -522,8 +522,7 @@ TEMPLATE_LIST_TEST_CASE("contact keeps HMX blocks from interpenetrating in a 300
 // 8 cells wide and periodic in x, so they touch on both sides) and an upper block across both,
 // 2 cells above them; the lower ones move up at 1.0 and 0.6 m/s, the upper one down at 1 m/s.
 // The nodes on the lower blocks' shared faces under the upper block carry three fields, so the
-// many-body branch of the correction (each body against the centre of mass along its own
-// normal) acts there. Run until well after the release (1.5 T, T = 2L/c_L).
+// many-body correction (pairs in turn, repeated until they agree) acts there. Run until well after the release (1.5 T, T = 2L/c_L).
 // Bounds: total momentum to 1e-12 of the upper body's (round-off, as for two bodies; the mass
 // cut-off is 0 here because the solver's default cut-off drops the forces on nodes lighter than
 // 1e-12 of a particle, which loses ~1e-10 of the momentum whatever the contact policy); the
@@ -633,11 +632,42 @@ TEMPLATE_LIST_TEST_CASE("the many-body correction at one node conserves momentum
     std::printf("one node, four bodies, %-20s: |sum p after - before| / max |p_b| = %.2e, pairs engaged %llx\n",
                 TestType::name, (after - before).norm() / scale, static_cast<unsigned long long>(node.engaged_pairs));
     CHECK((after - before).norm() <= 1e-15 * scale);
+    // The built-in policies repeat the sweep until the pairs they engaged agree: no engaged
+    // pair is left approaching or parting along its normal (1e-12 of the largest speed).
+    if (!std::is_same_v<TestType, always_stick_case>) {
+        REQUIRE(node.engaged_pairs != 0);
+        for (std::size_t a = 0; a < k; ++a)
+            for (std::size_t b = a + 1; b < k; ++b)
+                if (node.engaged_pairs & node.pair_bit(a, b))
+                    CHECK(std::abs((p[a] / mass[a] - p[b] / mass[b]).dot(node.pair_normal(a, b))) <= 1e-12 * 4.0);
+    }
     // Something was corrected (the check above is not vacuous).
     double moved = 0;
     const std::array<vec, k> p0{vec(0.4, 1.1), vec(-0.2, -0.9), vec(0.3, -0.4), vec(-1.2, 0.2)};
     for (std::size_t b = 0; b < k; ++b) moved = std::max(moved, (p[b] - p0[b]).norm());
     CHECK(moved > 0.01);
+}
+
+// Pair masks hold 64 pairs, so at most 11 bodies may share a node: 16 bodies, one particle
+// each, around one node stop the run with an error naming the node, not a silent wrong answer.
+TEST_CASE("more bodies at one node than contact handles stop the run, naming the node", "[contact][errors]") {
+    const double h = 0.01;
+    gimlet::grid_spec<S> gs;
+    gs.lower = vec::Zero();
+    gs.upper = vec(8 * h, 8 * h);
+    gs.cell = h;
+    gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            const vec lo(3 * h + i * h / 2, 3 * h + j * h / 2);
+            sc.add_body(gimlet::scene::box<S>(lo, vec(lo + vec(h / 2, h / 2))), elastic(), vec::Zero(), 2);
+        }
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, contact::bardenhagen> sol(sc);
+    REQUIRE(sol.particles().size() == 16);
+    CHECK_THROWS_AS(sol.step(), gimlet::numerical_error);
+    CHECK_THROWS_WITH(sol.step(), Catch::Matchers::Contains("is shared by 16 bodies") &&
+                                      Catch::Matchers::Contains("at most 11 at one node") &&
+                                      Catch::Matchers::Contains("grid node at (0.04, 0.04) m"));
 }
 
 // ---- 6. a user-written policy --------------------------------------------------------------

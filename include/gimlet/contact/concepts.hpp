@@ -17,8 +17,8 @@ namespace gimlet::contact {
 ///   policy makes the solver allocate and map exactly one field.
 /// - `required_fields`: field_list of the per-particle state it needs.
 /// - multi-field policies: `resolve(node)`, called at every node where two or more bodies have
-///   mass, once to decide where contact acts (on the velocities after the forces of the current
-///   stress) and again where a later pass of the step must keep that decision
+///   mass, once to decide where contact acts (on the velocities the forces of the current
+///   stress give, with the walls) and again where a later pass of the step must keep that decision
 ///   (node_view::kept_pairs; docs/equations.md, Contact). It corrects the bodies' nodal momenta
 ///   in `node.momentum` (contact::node_view) and should record the pairs it corrected in
 ///   `node.engaged_pairs` (the solver records every pair where it changed momenta without). A

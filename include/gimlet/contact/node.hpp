@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 namespace gimlet::contact {
 
@@ -30,12 +31,15 @@ struct node_view {
     real cell = 0;                    ///< h
     real dt = 0;                      ///< time step
 
-    // Pairs of bodies at the node, for the masks below: (a, b) with a < b in the node's order
-    // has bit pair_bit(a, b). With more than 11 bodies, the pairs past the 64th have no bit and
-    // count as open and never kept.
+    /// Most bodies at one node: their pairs must fit the 64-bit masks below. The solver stops a
+    /// run with a numerical_error naming the node if more meet there.
+    static constexpr std::size_t max_bodies = 11;
+    /// The bit of the pair of bodies a and b (in either order) in the masks below; 0 if a == b.
     [[nodiscard]] std::uint64_t pair_bit(std::size_t a, std::size_t b) const noexcept {
-        const std::size_t index = a * (2 * count - a - 1) / 2 + (b - a - 1);
-        return index < 64 ? std::uint64_t(1) << index : 0;
+        if (a == b) return 0;
+        if (a > b) std::swap(a, b);
+        const std::size_t index = a * (2 * count - a - 1) / 2 + (b - a - 1);  // (0,1), (0,2), ..., (1,2), ...
+        return std::uint64_t(1) << index;
     }
     /// In: pairs whose normal constraint must hold in this pass without testing whether they
     /// approach. They are the pairs this step's deciding pass engaged, seen again by a later pass
@@ -43,8 +47,9 @@ struct node_view {
     /// separating there, and dropping the constraint that the stress or the forces were computed
     /// with creates energy (docs/equations.md, Contact).
     std::uint64_t kept_pairs = 0;
-    /// In: pairs the policy may engage if it finds them in contact (the deciding pass: all;
-    /// MUSL's re-mapping: those not kept; USF's grid update: none).
+    /// In: pairs the policy may engage if it finds them in contact (a deciding pass: all;
+    /// MUSL's re-mapping: those not kept; USF's constraint on the stress velocities and its grid
+    /// update: none).
     std::uint64_t open_pairs = ~std::uint64_t(0);
     /// Out: the pairs the policy corrected. The solver records them for the step's later
     /// passes; where a policy changes momenta without setting any, it records every pair.
@@ -63,10 +68,7 @@ struct node_view {
         return -(reach[a * count + b] + reach[b * count + a]);
     }
     [[nodiscard]] bool kept(std::size_t a, std::size_t b) const noexcept { return kept_pairs & pair_bit(a, b); }
-    [[nodiscard]] bool open(std::size_t a, std::size_t b) const noexcept {
-        const std::uint64_t bit = pair_bit(a, b);
-        return bit == 0 || (open_pairs & bit);
-    }
+    [[nodiscard]] bool open(std::size_t a, std::size_t b) const noexcept { return open_pairs & pair_bit(a, b); }
 };
 
 }  // namespace gimlet::contact

@@ -145,6 +145,15 @@ public:
     }
     /// Distance between consecutive storage indices along axis d in the flat node index.
     [[nodiscard]] int stride(int d) const noexcept { return stride_[d]; }
+    /// Position of the node stored at `index` (0 <= index < size()), for messages.
+    [[nodiscard]] vector node_position(std::size_t index) const {
+        vector x;
+        for (int d = 0; d < dim; ++d) {
+            const int i = static_cast<int>(index / std::size_t(stride_[d])) % nodes_[d];
+            x[d] = spec_.lower[d] + real(i - offset_[d]) * spec_.cell;
+        }
+        return x;
+    }
     /// True if node k along axis d is stored (always on a periodic axis).
     [[nodiscard]] bool stored(int d, int k) const noexcept {
         return periodic_[d] || (k + offset_[d] >= 0 && k + offset_[d] < nodes_[d]);

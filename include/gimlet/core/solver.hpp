@@ -302,7 +302,8 @@ private:
     //
     // The phases of PHYSICS.md section 1 are fused where their arithmetic allows it, so a step
     // makes few passes over the particles and the nodes: the weights, one scatter (mass,
-    // momentum and, unless USF, forces), one node pass (v^n, momentum update, v^{n+1}), one
+    // momentum and forces; USF without contact maps its forces after the stress update, USF
+    // with contact both), one node pass (v^n, momentum update, v^{n+1}), one
     // gather (with MUSL's re-map scatter), one node pass for MUSL, and one particle pass that
     // updates the material and checks the particle. Each quantity is computed
     // with the same operations as in the unfused order; only the order in which a node sums its
@@ -664,6 +665,15 @@ private:
                 shared_body_.resize(first);
                 continue;
             }
+            if (k > contact::node_view<S>::max_bodies) {
+                std::string ids;
+                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_body_[first + j]);
+                throw numerical_error("gimlet: step " + std::to_string(steps_) + " (t = " +
+                                      gimlet::detail::to_text(double(time_)) + " s): grid node at " +
+                                      format_vector(grid_.node_position(node)) + " is shared by " + std::to_string(k) +
+                                      " bodies (" + ids + "); multi-field contact handles at most " +
+                                      std::to_string(contact::node_view<S>::max_bodies) + " at one node");
+            }
             shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
             shared_.push_back({node, first, k, shared_pair_normal_.size()});
             for (std::size_t j = 0; j < k; ++j) {
@@ -722,20 +732,29 @@ private:
     void resolve_contact(contact_pass pass) {
         const std::size_t nodes = grid_.size();
         const bool trial = pass == contact_pass::trial, deciding = trial || pass == contact_pass::decide;
+        if (trial) {
+            // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
+            trial_velocity_.resize(grid_.entries());
+            for (std::size_t e = 0; e < grid_.entries(); ++e)
+                trial_velocity_[e] = grid_.mass[e] > mass_cutoff_
+                                         ? vector(grid_.velocity_old[e] + dt_ * grid_.force[e] / grid_.mass[e])
+                                         : vector::Zero();
+            grid_.apply_walls(trial_velocity_);
+        }
         for (std::size_t s = 0; s < shared_.size(); ++s) {
             if (pass == contact_pass::keep && engaged_[s] == 0) continue;
             const shared_node& sn = shared_[s];
             const std::size_t k = sn.count;
-            m_.resize(k), p_.resize(k);
-            auto load = [&](bool with_force) {
+            m_.resize(k), p_.resize(k), p_before_.resize(k);
+            auto load = [&](const std::vector<vector>& velocity) {
                 for (std::size_t j = 0; j < k; ++j) {
                     const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
                     m_[j] = grid_.mass[e];
-                    p_[j] = grid_.mass[e] * grid_.velocity[e];  // after walls
-                    if (with_force) p_[j] += dt_ * grid_.force[e];
+                    p_[j] = grid_.mass[e] * velocity[e];  // after walls
                 }
             };
-            load(trial);
+            load(trial ? trial_velocity_ : grid_.velocity);
+            std::copy(p_.begin(), p_.end(), p_before_.begin());
             contact::node_view<S> view{k,
                                        shared_body_.data() + sn.first_body,
                                        m_.data(),
@@ -752,17 +771,13 @@ private:
             if (deciding) {
                 std::uint64_t pairs = view.engaged_pairs;
                 // A user policy that corrects without saying which pairs: all of them.
-                for (std::size_t j = 0; j < k && pairs == 0; ++j) {
-                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
-                    vector before = grid_.mass[e] * grid_.velocity[e];
-                    if (trial) before += dt_ * grid_.force[e];
-                    if (p_[j] != before) pairs = ~std::uint64_t(0);
-                }
+                for (std::size_t j = 0; j < k && pairs == 0; ++j)
+                    if (p_[j] != p_before_[j]) pairs = ~std::uint64_t(0);
                 engaged_[s] = pairs;
             }
             if (trial) {
                 if (engaged_[s] == 0) continue;
-                load(false);
+                load(grid_.velocity);
                 view.kept_pairs = engaged_[s];
                 view.open_pairs = 0;
                 view.engaged_pairs = 0;
@@ -869,7 +884,7 @@ private:
     std::vector<real> shared_reach_;
     std::vector<std::uint64_t> engaged_;
     std::vector<real> m_;
-    std::vector<vector> p_;
+    std::vector<vector> p_, p_before_, trial_velocity_;
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };
