@@ -11,6 +11,16 @@
 
 namespace gimlet::contact {
 
+/// The normal two bodies share at a node, from a towards b, given their own outward unit
+/// normals: (n^a - n^b)/|n^a - n^b| (Bardenhagen et al. 2000; zero if they coincide). The solver
+/// measures the reach along it and the policies correct along it, so both use this one formula.
+template <class Vector>
+[[nodiscard]] Vector pair_normal(const Vector& normal_a, const Vector& normal_b) {
+    const Vector d = normal_a - normal_b;
+    const auto len = d.norm();
+    return len > 0 ? Vector(d / len) : Vector(Vector::Zero());
+}
+
 /// One node where several bodies have mass (above the solver's cut-off). Arrays are indexed by
 /// the bodies present at this node, in increasing body id.
 template <Space S>
@@ -58,9 +68,7 @@ struct node_view {
     /// The normal shared by bodies a and b, from a towards b: (n^a - n^b)/|n^a - n^b| (zero if
     /// their normals coincide).
     [[nodiscard]] vector pair_normal(std::size_t a, std::size_t b) const {
-        const vector d = normal[a] - normal[b];
-        const real len = d.norm();
-        return len > real(0) ? vector(d / len) : vector::Zero();
+        return contact::pair_normal(normal[a], normal[b]);
     }
     /// Distance between the facing particle centres of bodies a and b along their pair normal
     /// (the reference paper's R_i^pq, its section 2.2; PHYSICS.md section 3).

@@ -681,13 +681,12 @@ private:
                 const real len = g.norm();
                 shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
             }
-            // n_ab = (n^a - n^b)/|n^a - n^b| (contact::detail::correct uses the same), so n_ba = -n_ab.
+            // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
             for (std::size_t a = 0; a < k; ++a)
-                for (std::size_t b = 0; b < k; ++b) {
-                    const vector d = shared_normal_[first + a] - shared_normal_[first + b];
-                    const real len = d.norm();
-                    shared_pair_normal_.push_back(a != b && len > real(0) ? vector(d / len) : vector::Zero());
-                }
+                for (std::size_t b = 0; b < k; ++b)
+                    shared_pair_normal_.push_back(
+                        a != b ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b])
+                               : vector::Zero());
         }
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         engaged_.assign(shared_.size(), 0);
