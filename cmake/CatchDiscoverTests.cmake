@@ -51,6 +51,19 @@ foreach(arg IN LISTS TEST_EXECUTOR)
     string(APPEND executor "${q} ")
 endforeach()
 
+# Test cases tagged [long] (physics at full resolution, run in the release preset only; see
+# docs/testing.md) also get the ctest label `long`, which the asan-ubsan test preset excludes.
+execute_process(
+    COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" "[long]" --list-test-names-only
+    OUTPUT_VARIABLE long_listing
+    RESULT_VARIABLE result
+    WORKING_DIRECTORY "${TEST_WORKING_DIR}")
+if(NOT result MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "listing the [long] tests of '${TEST_EXECUTABLE}' failed: ${result}\n${long_listing}")
+endif()
+# Compared line by line as text (never as a CMake list: a name may contain ';').
+string(REPLACE "\r" "" long_listing "\n${long_listing}\n")
+
 set(script "")
 set(names "")
 string(REPLACE "\r" "" listing "${listing}")
@@ -67,6 +80,7 @@ while(NOT listing STREQUAL "")
     if(line STREQUAL "")
         continue()
     endif()
+    set(raw "${line}")
     # Catch quotes names that start with '#'.
     if(line MATCHES "^\"(#.*)\"$")
         set(line "${CMAKE_MATCH_1}")
@@ -84,6 +98,10 @@ while(NOT listing STREQUAL "")
     _gimlet_bracket(qfilter "${filter}")
     string(APPEND script "add_test(${qname} ${executor}${exe} ${qfilter}${extra})\n")
     string(APPEND script "set_tests_properties(${qname} PROPERTIES WORKING_DIRECTORY ${workdir}${props})\n")
+    string(FIND "${long_listing}" "\n${raw}\n" long_at)
+    if(NOT long_at EQUAL -1)
+        string(APPEND script "set_property(TEST ${qname} APPEND PROPERTY LABELS long)\n")
+    endif()
     string(REPLACE ";" "\\;" lname "${name}")
     list(APPEND names "${lname}")
 endwhile()

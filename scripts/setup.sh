@@ -4,7 +4,8 @@
 # only calls apt-get when a package is missing.
 set -euo pipefail
 
-packages=(cmake ninja-build g++ libeigen3-dev catch2 python3-matplotlib python3-numpy)
+# clang, its OpenMP runtime and its sanitizer runtimes build the asan-ubsan preset (docs/testing.md).
+packages=(cmake ninja-build g++ clang libomp-dev libclang-rt-dev libeigen3-dev catch2 python3-matplotlib python3-numpy)
 
 is_installed() {
     dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"

@@ -2,38 +2,75 @@
 # SPDX-License-Identifier: MIT
 # Configure, build and test every preset in GIMLET_TEST_PRESETS (default: "release asan-ubsan").
 # Goes on after a failing preset so that one run reports them all; exits non-zero if any failed.
+#
+# The CI budget (docs/testing.md): at the end it prints the seconds of each phase (setup, then
+# configure, build and test of each preset) and the total, writes the same lines to
+# build/test-times.txt ("phase seconds", one per line, "total N" last), and lists the ten
+# slowest tests and the ten slowest translation units of each preset.
 set -uo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
-bash scripts/setup.sh || { echo "test.sh: FAILED: scripts/setup.sh"; exit 1; }
-
-presets="${GIMLET_TEST_PRESETS:-release asan-ubsan}"
+now() { date +%s.%N; }
+t_all=$(now)
+phases=()     # "name seconds"
 summary=()
 failed=0
-start_all=$SECONDS
+
+# Runs "$@" as phase $1 (the rest is the command) and records its seconds; returns its status.
+timed() {
+    local name=$1
+    shift
+    local t0 rc
+    t0=$(now)
+    "$@"
+    rc=$?
+    phases+=("$name $(awk -v a="$t0" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')")
+    return $rc
+}
+
+if ! timed setup bash scripts/setup.sh; then
+    echo "test.sh: FAILED: scripts/setup.sh"
+    exit 1
+fi
+
+presets="${GIMLET_TEST_PRESETS:-release asan-ubsan}"
+mkdir -p build
 
 for p in $presets; do
-    start=$SECONDS
     echo "=== test.sh: preset $p ==="
-    if ! cmake --preset "$p"; then
+    junit="$repo_root/build/$p/test-results.xml"
+    if ! timed "$p.configure" cmake --preset "$p"; then
         status="FAIL(configure)"
-    elif ! cmake --build --preset "$p" -j2; then
+    elif ! timed "$p.build" cmake --build --preset "$p" -j2; then
         status="FAIL(build)"
-    elif ! ctest --preset "$p"; then
+    elif ! timed "$p.test" ctest --preset "$p" --output-junit "$junit"; then
         status="FAIL(test)"
     else
         status="ok"
     fi
     [ "$status" = ok ] || failed=1
-    summary+=("$p: $status ($((SECONDS - start)) s)")
+    summary+=("$p: $status")
 done
 
+total=$(awk -v a="$t_all" -v b="$(now)" 'BEGIN { printf "%.0f", b - a }')
+times_file="build/test-times.txt"
+{
+    printf '%s\n' "${phases[@]}"
+    echo "total $total"
+} > "$times_file"
+
+for p in $presets; do
+    python3 scripts/slowest.py --preset "$p" --build "build/$p" --count 10 || true
+done
+
+echo "=== test.sh: seconds per phase (also in $times_file; the budget is 900 s: docs/testing.md) ==="
+sed 's/^/  /' "$times_file"
 echo "=== test.sh summary ==="
 printf '  %s\n' "${summary[@]}"
 if [ "$failed" -eq 0 ]; then
-    echo "test.sh: ALL PASSED [$presets] in $((SECONDS - start_all)) s"
+    echo "test.sh: ALL PASSED [$presets] in $total s"
 else
     echo "test.sh: FAILED [${summary[*]}]"
 fi

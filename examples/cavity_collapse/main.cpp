@@ -105,6 +105,9 @@ struct listed_times {
         f(so);
     }
 };
+// Aggregate deduction (C++20, P1816) is not in clang 14: the guide says it.
+template <class F>
+listed_times(std::vector<double>, std::size_t, F) -> listed_times<F>;
 
 // Where a run writes, and whether it checkpoints or resumes.
 struct run_files {

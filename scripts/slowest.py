@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Print the slowest tests and translation units of one preset's build tree.
+
+Tests come from the JUnit file ctest wrote (scripts/test.sh passes --output-junit
+<build>/test-results.xml); translation units from ninja's log (<build>/.ninja_log), where the
+latest build of each object file counts. Used by scripts/test.sh (docs/testing.md); run it by
+hand on any build tree:
+
+    python3 scripts/slowest.py --preset release --build build/release --count 10
+"""
+
+import argparse
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+
+def slowest_tests(junit, count):
+    """(seconds, name) of the `count` slowest test cases in a ctest JUnit file."""
+    root = ET.parse(junit).getroot()
+    cases = [(float(c.get("time", "0")), c.get("name", "?")) for c in root.iter("testcase")]
+    return sorted(cases, reverse=True)[:count], len(cases)
+
+
+def slowest_units(ninja_log, count):
+    """(seconds, output) of the `count` slowest object files in a .ninja_log (format v5)."""
+    latest = {}
+    with open(ninja_log, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#"):
+                continue
+            fields = line.rstrip("\n").split("\t")
+            if len(fields) < 5:
+                continue
+            start, end, output = int(fields[0]), int(fields[1]), fields[3]
+            if output.endswith(".o"):
+                latest[output] = (end - start) / 1000.0
+    units = sorted(((s, o) for o, s in latest.items()), reverse=True)
+    return units[:count], len(latest)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--preset", required=True)
+    ap.add_argument("--build", required=True, help="the preset's build tree")
+    ap.add_argument("--count", type=int, default=10)
+    a = ap.parse_args()
+
+    junit = os.path.join(a.build, "test-results.xml")
+    if os.path.exists(junit):
+        tests, n = slowest_tests(junit, a.count)
+        print(f"=== {a.preset}: the {len(tests)} slowest of {n} tests (s) ===")
+        for s, name in tests:
+            print(f"  {s:8.2f}  {name}")
+    else:
+        print(f"=== {a.preset}: no test results ({junit}) ===")
+
+    log = os.path.join(a.build, ".ninja_log")
+    if os.path.exists(log):
+        units, n = slowest_units(log, a.count)
+        print(f"=== {a.preset}: the {len(units)} slowest of {n} translation units (s, 2 at a time) ===")
+        for s, out in units:
+            print(f"  {s:8.2f}  {out}")
+    else:
+        print(f"=== {a.preset}: no build log ({log}) ===")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
