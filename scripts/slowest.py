@@ -8,10 +8,17 @@ latest build of each object file counts. Used by scripts/test.sh (docs/testing.m
 hand on any build tree:
 
     python3 scripts/slowest.py --preset release --build build/release --count 10
+
+With --test-guard and --unit-guard it also names every test slower than the guard that is not
+labelled `long`, and every translation unit slower than its guard: the growth guard of
+docs/testing.md (such a test needs the `long` label or a reason in a comment; such a unit, a
+reason).
 """
 
 import argparse
 import os
+import re
+import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
@@ -40,12 +47,25 @@ def slowest_units(ninja_log, count):
     return units[:count], len(latest)
 
 
+def long_tests(build):
+    """Names of the tests labelled `long` in a build tree (empty if ctest cannot list them)."""
+    try:
+        out = subprocess.run(["ctest", "--test-dir", build, "-N", "-L", "^long$"],
+                             capture_output=True, text=True, check=False).stdout
+    except OSError:
+        return set()
+    return {m.group(1) for m in re.finditer(r"^\s*Test\s+#\d+: (.*)$", out, re.M)}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--preset", required=True)
     ap.add_argument("--build", required=True, help="the preset's build tree")
     ap.add_argument("--count", type=int, default=10)
+    ap.add_argument("--test-guard", type=float, help="seconds above which a test needs `long` or a reason")
+    ap.add_argument("--unit-guard", type=float, help="seconds above which a translation unit needs a reason")
     a = ap.parse_args()
+    over = []
 
     junit = os.path.join(a.build, "test-results.xml")
     if os.path.exists(junit):
@@ -53,6 +73,11 @@ def main():
         print(f"=== {a.preset}: the {len(tests)} slowest of {n} tests (s) ===")
         for s, name in tests:
             print(f"  {s:8.2f}  {name}")
+        if a.test_guard is not None:
+            labelled = long_tests(a.build)
+            every, _ = slowest_tests(junit, n)
+            over += [f"test {name}: {s:.1f} s > {a.test_guard:g} s" for s, name in every
+                     if s > a.test_guard and name not in labelled]
     else:
         print(f"=== {a.preset}: no test results ({junit}) ===")
 
@@ -62,8 +87,15 @@ def main():
         print(f"=== {a.preset}: the {len(units)} slowest of {n} translation units (s, 2 at a time) ===")
         for s, out in units:
             print(f"  {s:8.2f}  {out}")
+        if a.unit_guard is not None:
+            every, _ = slowest_units(log, n)
+            over += [f"unit {out}: {s:.1f} s > {a.unit_guard:g} s" for s, out in every if s > a.unit_guard]
     else:
         print(f"=== {a.preset}: no build log ({log}) ===")
+    if over:
+        print(f"=== {a.preset}: over the growth guard (docs/testing.md: the `long` label, or a reason in a comment) ===")
+        for line in over:
+            print(f"  {line}")
     return 0
 
 

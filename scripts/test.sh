@@ -61,8 +61,15 @@ times_file="build/test-times.txt"
     echo "total $total"
 } > "$times_file"
 
+# The growth guard (docs/testing.md): a test over 20 s in release or 60 s under asan-ubsan
+# carries the `long` label or a reason; a unit over 40 s to compile under asan-ubsan, a reason.
 for p in $presets; do
-    python3 scripts/slowest.py --preset "$p" --build "build/$p" --count 10 || true
+    case "$p" in
+        asan-ubsan) guards=(--test-guard 60 --unit-guard 40) ;;
+        release) guards=(--test-guard 20) ;;
+        *) guards=() ;;
+    esac
+    python3 scripts/slowest.py --preset "$p" --build "build/$p" --count 10 "${guards[@]}" || true
 done
 
 echo "=== test.sh: seconds per phase (also in $times_file; the budget is 900 s: docs/testing.md) ==="
