@@ -2,10 +2,20 @@
 # SPDX-License-Identifier: MIT
 # Install what gimlet needs to build, test and plot, from the Debian packages. Idempotent: it
 # only calls apt-get when a package is missing.
+#
+#   bash scripts/setup.sh           everything: build, test, and the figures (matplotlib)
+#   bash scripts/setup.sh --tests   what building and running the test suite needs, nothing for
+#                                   the figures (scripts/test.sh: saves about 20 s of CI)
 set -euo pipefail
 
-# clang, its OpenMP runtime and its sanitizer runtimes build the asan-ubsan preset (docs/testing.md).
-packages=(cmake ninja-build g++ clang libomp-dev libclang-rt-dev libeigen3-dev catch2 python3-matplotlib python3-numpy)
+# What the build and the tests need. clang, its OpenMP runtime and its sanitizer runtimes build
+# the asan-ubsan preset (docs/testing.md).
+packages=(cmake ninja-build g++ clang libomp-dev libclang-rt-dev libeigen3-dev catch2)
+case "${1:-}" in
+    --tests) ;;
+    "") packages+=(python3-matplotlib python3-numpy) ;;  # the examples' figures
+    *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests]" >&2; exit 2 ;;
+esac
 
 is_installed() {
     dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"

@@ -30,7 +30,7 @@ timed() {
     return $rc
 }
 
-if ! timed setup bash scripts/setup.sh; then
+if ! timed setup bash scripts/setup.sh --tests; then
     echo "test.sh: FAILED: scripts/setup.sh"
     exit 1
 fi
