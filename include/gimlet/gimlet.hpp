@@ -42,6 +42,7 @@
 #include "gimlet/strength/von_mises.hpp"
 #include "gimlet/thermal/concepts.hpp"
 #include "gimlet/thermal/hugoniot_heating.hpp"
+#include "gimlet/thermal/isentrope_temperature.hpp"
 #include "gimlet/thermal/none.hpp"
 #include "gimlet/viscosity/concepts.hpp"
 #include "gimlet/viscosity/bulk.hpp"

@@ -118,6 +118,10 @@ void update_material_point(const M& mat, const P& p,
     const tensor3 known = real(0.5) * (sigma_old + s - q * tensor3::Identity());
     st.energy_before_pressure = e + dt / st.density * known.cwiseProduct(st.D).sum();
     st.pressure_work_factor = real(0.5) * dt * st.D.trace() / st.density;
+    // The stored elastic shear energy s:s / (4 G rho) (linear elasticity of the deviator): in e,
+    // but not heat (docs/equations.md, thermal::isentrope_temperature).
+    const real shear = mat.strength.shear_modulus(static_cast<const point_state<real>&>(st), p);
+    st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
     const real pres = mat.eos.pressure(st, p);
     if (!std::isfinite(pres))
         throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");

@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Temperature from the thermodynamic state (V, e) of a Mie-Grueneisen material, measured from
+/// its reference isentrope: the temperature consistent with the EOS's own energy.
+
+#include "gimlet/core/describe.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/thermal/concepts.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+namespace gimlet::thermal {
+
+/// Temperature from the specific volume and the thermal part of the specific internal energy,
+/// for the Mie-Grueneisen EOS with constant Gamma (Gamma/V = Gamma rho) and constant c_v
+/// (Menikoff 2016, LA-UR-16-21706; docs/equations.md, "thermal::isentrope_temperature"):
+/// \f[ T(V, e_{th}) = T_s(V) + \frac{e_{th} - e_s(V)}{c_v}, \qquad
+///     T_s = T_0 \left(\frac{V_0}{V}\right)^{\Gamma}, \qquad e_s(V) = -\int_{V_0}^{V} P_s\,dV, \f]
+/// where the reference isentrope \f$(V, e_s)\f$ runs through \f$(V_0, 0)\f$ at \f$T_0\f$ and obeys
+/// \f$ de_s/dV = -P(V, e_s) \f$ with \f$ P = P_H + (\Gamma/V)(e - e_H) \f$. With J = V/V0:
+/// \f[ e_s(J) = J^{-\Gamma} \int_1^J -\frac{P_H(J')}{\rho_0} J'^{\Gamma}
+///     \left(1 - \frac{\Gamma (1 - J')}{2 J'}\right) dJ' \f]
+/// (from \f$ d(J^\Gamma e_s)/dJ = J^\Gamma (-P_H/\rho_0 + \Gamma e_H / J) \f$,
+/// \f$ e_H = P_H (1 - J) / (2\rho_0) \f$), tabulated once at construction.
+///
+/// It is the temperature the EOS's thermodynamics imply (c_v dT = T ds - (Gamma c_v T / V) dV
+/// integrated along the isentrope and then at constant V), so on a single shock it equals the
+/// Walsh-Christian Hugoniot temperature; on release it keeps the entropy the shock made (T / T_s
+/// is constant along any isentrope); and it is bounded by the energy a particle actually holds.
+///
+/// \f$ e_{th} \f$ is the specific internal energy less the stored elastic shear energy
+/// \f$ s:s/(4G\rho) \f$ (point_step::shear_energy), which is not heat (eos::mie_gruneisen still
+/// takes the whole e: docs/equations.md says why, and the difference is below 2e-4 K). A particle whose \f$ e_{th} \f$ falls below \f$ e_s(V) \f$ by more than
+/// \f$ c_v \f$ times `cold_tolerance` (default 0.1 K) has lost energy to the numerics: the update
+/// stops the run with a numerical_error naming it, and never clamps it.
+///
+/// The reference curve is tabulated from 1 - s eta = 0.01 in compression (beyond the EOS's stop at
+/// 0.05) to J = 3 in expansion, uniformly in ln(J - J_1/s) (J_1/s = 1 - 1/s, the singular volume),
+/// with cubic Hermite interpolation between nodes; a state outside the table is integrated
+/// directly. The table is shared between copies.
+class isentrope_temperature {
+public:
+    static constexpr bool enabled = true;
+    using required_fields = field_list<fields::temperature>;
+
+    /// \param density0 rho_0 (kg/m^3); \param sound_speed c_0 (m/s); \param slope s (> 1);
+    /// \param gruneisen Gamma (>= 0); \param specific_heat c_v (J/(kg K));
+    /// \param initial_temperature T_0 (K); \param cold_tolerance how far (K) e_th may fall below
+    /// the reference isentrope, as c_v times it, before the update stops the run (>= 0).
+    isentrope_temperature(double density0, double sound_speed, double slope, double gruneisen, double specific_heat,
+                          double initial_temperature, double cold_tolerance = 0.1)
+        : rho0_(density0), c0_(sound_speed), s_(slope), gamma_(gruneisen), cv_(specific_heat),
+          t0_(initial_temperature), cold_(cold_tolerance) {
+        require_positive("thermal reference density rho0 (kg/m^3)", density0);
+        require_positive("thermal bulk sound speed c0 (m/s)", sound_speed);
+        require(std::isfinite(slope) && slope > 1.0, "thermal Hugoniot slope s", slope, "> 1");
+        require_non_negative("thermal Grueneisen parameter Gamma", gruneisen);
+        require_positive("specific heat c_v (J/(kg K))", specific_heat);
+        require_positive("initial temperature T0 (K)", initial_temperature);
+        require_non_negative("cold_tolerance (K)", cold_tolerance);
+        table_ = std::make_shared<const table>(build());
+    }
+
+    template <class P>
+    void initialize(const P& p) const {
+        auto& t = p.template get<fields::temperature>();
+        t = static_cast<std::remove_cvref_t<decltype(t)>>(t0_);
+    }
+
+    /// T from the end-of-step state. `dissipated` (plastic work) is already in e: not added again.
+    template <class Real, class P>
+    void update(const point_step<Real>& st, Real /*dissipated*/, const P& p) const {
+        const double j = double(st.J);
+        const double e_th = double(p.template get<fields::specific_internal_energy>()) - double(st.shear_energy);
+        const double below = reference_energy(j, p, st.step, st.time) - e_th;
+        if (below > cv_ * cold_)
+            throw numerical_error(describe_particle(p, st.step, st.time) + ": thermal energy e_th = " +
+                                  detail::to_text(e_th) + " J/kg is below the reference isentrope e_s(V) by " +
+                                  detail::to_text(below) + " J/kg (" + detail::to_text(below / cv_) +
+                                  " K, more than cold_tolerance " + detail::to_text(cold_) +
+                                  " K) at J = " + detail::to_text(j) + ": the numerics lost energy");
+        p.template get<fields::temperature>() = Real(isentrope(j) - below / cv_);
+    }
+
+    /// T_s(J) = T0 J^-Gamma, the reference isentrope's temperature (K).
+    [[nodiscard]] double isentrope(double j) const { return t0_ * std::pow(j, -gamma_); }
+
+    /// T(J, e_th) (K), no checks.
+    [[nodiscard]] double temperature(double j, double e_th) const {
+        return isentrope(j) + (e_th - reference_energy(j)) / cv_;
+    }
+
+    /// e_s(J) (J/kg), the specific energy on the reference isentrope. Throws invalid_parameter
+    /// at or beyond the singular compression J = 1 - 1/s.
+    [[nodiscard]] double reference_energy(double j) const {
+        require(std::isfinite(j) && j > j_sing(), "J = V/V0 of the reference isentrope", j,
+                "> 1 - 1/s = " + detail::to_text(j_sing()));
+        return table_->at(*this, j);
+    }
+
+    /// The isentrope's pressure P_s(J) = P_H + Gamma rho0 / J (e_s - e_H) (Pa).
+    [[nodiscard]] double reference_pressure(double j) const {
+        return hugoniot_pressure(j) + gamma_ * rho0_ / j * (reference_energy(j) - hugoniot_energy(j));
+    }
+
+    [[nodiscard]] double specific_heat() const noexcept { return cv_; }
+    [[nodiscard]] double initial_temperature() const noexcept { return t0_; }
+    [[nodiscard]] double gruneisen() const noexcept { return gamma_; }
+    [[nodiscard]] double cold_tolerance() const noexcept { return cold_; }
+
+private:
+    /// The tabulated reference energy: nodes uniform in x = ln(J - J_sing).
+    struct table {
+        double x0 = 0, dx = 0;
+        std::vector<double> e, de_dx;  ///< e_s and de_s/dx at the nodes
+
+        double at(const isentrope_temperature& th, double j) const {
+            const double x = std::log(j - th.j_sing());
+            const double u = (x - x0) / dx;
+            if (!(u >= 0.0) || !(u < double(e.size() - 1))) return th.direct(j);
+            const auto k = static_cast<std::size_t>(u);
+            const double t = u - double(k), t2 = t * t, t3 = t2 * t;
+            // Cubic Hermite on [x_k, x_k+1] with the exact slopes.
+            return (2 * t3 - 3 * t2 + 1) * e[k] + (t3 - 2 * t2 + t) * dx * de_dx[k] + (-2 * t3 + 3 * t2) * e[k + 1] +
+                   (t3 - t2) * dx * de_dx[k + 1];
+        }
+    };
+
+    static constexpr std::size_t compressed_nodes = 1024;  ///< nodes from the compressed end to J = 1
+    static constexpr double table_margin = 0.01;  ///< 1 - s eta at the table's compressed end
+    static constexpr double table_top = 3.0;      ///< J at its expanded end (or the first node past it)
+
+    [[nodiscard]] double j_sing() const { return 1.0 - 1.0 / s_; }
+
+    [[nodiscard]] double hugoniot_pressure(double j) const {
+        const double eta = 1.0 - j, k0 = rho0_ * c0_ * c0_;
+        if (eta >= 0.0) return k0 * eta / ((1.0 - s_ * eta) * (1.0 - s_ * eta));
+        return k0 * (1.0 / j - 1.0);
+    }
+    [[nodiscard]] double hugoniot_energy(double j) const { return 0.5 * hugoniot_pressure(j) * (1.0 - j) / rho0_; }
+
+    /// The integrand g(J) = d(J^Gamma e_s)/dJ.
+    [[nodiscard]] double integrand(double j) const {
+        return -hugoniot_pressure(j) / rho0_ * std::pow(j, gamma_) * (1.0 - gamma_ * (1.0 - j) / (2.0 * j));
+    }
+
+    /// int_a^b g(J) dJ by 8-point Gauss-Legendre in x = ln(J - J_sing) (smooth there).
+    [[nodiscard]] double integral(double a, double b) const {
+        static constexpr std::array<double, 4> node{0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                                    0.9602898564975363};
+        static constexpr std::array<double, 4> weight{0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                                      0.1012285362903763};
+        const double xa = std::log(a - j_sing()), xb = std::log(b - j_sing());
+        const double mid = 0.5 * (xa + xb), half = 0.5 * (xb - xa);
+        double sum = 0;
+        for (std::size_t i = 0; i < node.size(); ++i)
+            for (const double sign : {-1.0, 1.0}) {
+                const double x = mid + sign * half * node[i];
+                const double jx = j_sing() + std::exp(x);
+                sum += weight[i] * integrand(jx) * (jx - j_sing());  // dJ = (J - J_sing) dx
+            }
+        return half * sum;
+    }
+
+    /// e_s(J) integrated from J = 1 in steps no wider than the table's (for states off the table).
+    [[nodiscard]] double direct(double j) const {
+        const double xa = std::log(1.0 - j_sing()), xb = std::log(j - j_sing());
+        const auto steps = static_cast<std::size_t>(std::ceil(std::abs(xb - xa) / table_->dx)) + 1;
+        double sum = 0, prev = 1.0;
+        for (std::size_t k = 1; k <= steps; ++k) {
+            const double next = j_sing() + std::exp(xa + (xb - xa) * double(k) / double(steps));
+            sum += integral(prev, next);
+            prev = next;
+        }
+        return sum * std::pow(j, -gamma_);
+    }
+
+    [[nodiscard]] table build() const {
+        table t;
+        // J = 1 is node k1 exactly, so e_s(1) = 0 exactly; 1 - s eta = margin at node 0.
+        const std::size_t k1 = compressed_nodes;
+        const double x1 = std::log(1.0 - j_sing());
+        t.x0 = std::log(table_margin / s_);  // 1 - s eta = margin  <=>  J - J_sing = margin / s
+        t.dx = (x1 - t.x0) / double(k1);
+        const auto nodes = k1 + static_cast<std::size_t>(std::ceil((std::log(table_top - j_sing()) - x1) / t.dx)) + 1;
+        t.e.resize(nodes);
+        t.de_dx.resize(nodes);
+        auto j_at = [&](std::size_t k) { return k == k1 ? 1.0 : j_sing() + std::exp(t.x0 + t.dx * double(k)); };
+        // Outwards from J = 1 node by node: I(J) = int_1^J g.
+        std::vector<double> cumulative(nodes);
+        cumulative[k1] = 0.0;
+        for (std::size_t k = k1; k-- > 0;) cumulative[k] = cumulative[k + 1] + integral(j_at(k + 1), j_at(k));
+        for (std::size_t k = k1 + 1; k < nodes; ++k) cumulative[k] = cumulative[k - 1] + integral(j_at(k - 1), j_at(k));
+        for (std::size_t k = 0; k < nodes; ++k) {
+            const double j = j_at(k);
+            const double es = cumulative[k] * std::pow(j, -gamma_);
+            t.e[k] = es;
+            // de_s/dJ = -P(J, e_s) / rho0 on the isentrope, and dJ/dx = J - J_sing.
+            const double p = hugoniot_pressure(j) + gamma_ * rho0_ / j * (es - hugoniot_energy(j));
+            t.de_dx[k] = -p / rho0_ * (j - j_sing());
+        }
+        return t;
+    }
+
+    template <class P>
+    [[nodiscard]] double reference_energy(double j, const P& p, std::size_t step, double time) const {
+        if (!(j > j_sing()))
+            throw numerical_error(describe_particle(p, step, time) + ": J = " + detail::to_text(j) +
+                                  " is at or beyond the singular compression 1 - 1/s = " + detail::to_text(j_sing()) +
+                                  " of the reference isentrope");
+        return table_->at(*this, j);
+    }
+
+    double rho0_, c0_, s_, gamma_, cv_, t0_, cold_;
+    std::shared_ptr<const table> table_;
+};
+
+static_assert(Thermal<isentrope_temperature>);
+
+}  // namespace gimlet::thermal
