@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Install what gimlet needs to build, test and plot, from the Debian packages. Idempotent: it
-# only calls apt-get when a package is missing.
+# Install what gimlet needs, from the Debian packages. Idempotent: it only calls apt-get when a
+# package is missing.
 #
-#   bash scripts/setup.sh           everything: build, test, and the figures (matplotlib)
-#   bash scripts/setup.sh --tests   what building and running the test suite needs, nothing for
-#                                   the figures (scripts/test.sh: saves about 20 s of CI)
+#   bash scripts/setup.sh           building the release preset and the examples' figures
+#                                   (scripts/quickstart.sh)
+#   bash scripts/setup.sh --tests   building and running the test suite: both presets, the
+#                                   asan-ubsan one with clang (scripts/test.sh; docs/testing.md)
 set -euo pipefail
 
-# What the build and the tests need. clang, its OpenMP runtime and its sanitizer runtimes build
-# the asan-ubsan preset (docs/testing.md).
-packages=(cmake ninja-build g++ clang libomp-dev libclang-rt-dev libeigen3-dev catch2)
+# Both: the compiler and build tools, Eigen, and Catch2 (the release preset configures the tests).
+packages=(cmake ninja-build g++ libeigen3-dev catch2)
 case "${1:-}" in
-    --tests) ;;
     "") packages+=(python3-matplotlib python3-numpy) ;;  # the examples' figures
+    # clang with its OpenMP and sanitizer runtimes (the asan-ubsan preset); python3 lists the
+    # slowest tests and units.
+    --tests) packages+=(clang libomp-dev libclang-rt-dev python3) ;;
     *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests]" >&2; exit 2 ;;
 esac
 

@@ -68,8 +68,13 @@ def main():
     over = []
 
     junit = os.path.join(a.build, "test-results.xml")
-    if os.path.exists(junit):
-        tests, n = slowest_tests(junit, a.count)
+    try:
+        found = slowest_tests(junit, a.count) if os.path.exists(junit) else None
+    except ET.ParseError as err:  # ctest stopped while writing it
+        print(f"=== {a.preset}: unreadable test results ({junit}: {err}) ===")
+        found = ()
+    if found:
+        tests, n = found
         print(f"=== {a.preset}: the {len(tests)} slowest of {n} tests (s) ===")
         for s, name in tests:
             print(f"  {s:8.2f}  {name}")
@@ -78,7 +83,7 @@ def main():
             every, _ = slowest_tests(junit, n)
             over += [f"test {name}: {s:.1f} s > {a.test_guard:g} s" for s, name in every
                      if s > a.test_guard and name not in labelled]
-    else:
+    elif found is None:
         print(f"=== {a.preset}: no test results ({junit}) ===")
 
     log = os.path.join(a.build, ".ninja_log")

@@ -17,6 +17,16 @@ t_all=$(now)
 phases=()     # "name seconds"
 summary=()
 failed=0
+times_file="build/test-times.txt"
+mkdir -p build
+
+# build/test-times.txt is written however the run ends (a failed phase, an interrupt).
+write_times() {
+    local total
+    total=$(awk -v a="$t_all" -v b="$(now)" 'BEGIN { printf "%.0f", b - a }')
+    { [ "${#phases[@]}" -eq 0 ] || printf '%s\n' "${phases[@]}"; echo "total $total"; } > "$times_file"
+}
+trap write_times EXIT
 
 # Runs "$@" as phase $1 (the rest is the command) and records its seconds; returns its status.
 timed() {
@@ -36,11 +46,11 @@ if ! timed setup bash scripts/setup.sh --tests; then
 fi
 
 presets="${GIMLET_TEST_PRESETS:-release asan-ubsan}"
-mkdir -p build
 
 for p in $presets; do
     echo "=== test.sh: preset $p ==="
     junit="$repo_root/build/$p/test-results.xml"
+    rm -f "$junit"  # never report an earlier run's tests as this one's
     if ! timed "$p.configure" cmake --preset "$p"; then
         status="FAIL(configure)"
     elif ! timed "$p.build" cmake --build --preset "$p" -j2; then
@@ -54,16 +64,15 @@ for p in $presets; do
     summary+=("$p: $status")
 done
 
-total=$(awk -v a="$t_all" -v b="$(now)" 'BEGIN { printf "%.0f", b - a }')
-times_file="build/test-times.txt"
-{
-    printf '%s\n' "${phases[@]}"
-    echo "total $total"
-} > "$times_file"
+write_times
+trap - EXIT
+total=$(awk '$1 == "total" { print $2 }' "$times_file")
 
 # The growth guard (docs/testing.md): a test over 20 s in release or 60 s under asan-ubsan
 # carries the `long` label or a reason; a unit over 40 s to compile under asan-ubsan, a reason.
+command -v python3 >/dev/null 2>&1 || echo "test.sh: no python3: the slowest tests and units are not listed"
 for p in $presets; do
+    command -v python3 >/dev/null 2>&1 || break
     case "$p" in
         asan-ubsan) guards=(--test-guard 60 --unit-guard 40) ;;
         release) guards=(--test-guard 20) ;;
@@ -72,7 +81,7 @@ for p in $presets; do
     python3 scripts/slowest.py --preset "$p" --build "build/$p" --count 10 "${guards[@]}" || true
 done
 
-echo "=== test.sh: seconds per phase (also in $times_file; the budget is 900 s: docs/testing.md) ==="
+echo "=== test.sh: seconds per phase (also in $times_file; the CI budget is 900 s: docs/testing.md) ==="
 sed 's/^/  /' "$times_file"
 echo "=== test.sh summary ==="
 printf '  %s\n' "${summary[@]}"

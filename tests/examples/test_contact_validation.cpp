@@ -47,7 +47,8 @@ TEST_CASE("contact validation: the distance switch removes the interface pressur
 // the shock (docs/reproduction.md, Known differences) puts cell-averaged values of 1.2-1.5 times
 // the plateau into the plateau at 2 and 1 mm (the distance policy reads 1.14 and 1.07 there).
 // 0.5 mm, the example's default (80 x 100 cells per block), is the coarsest power-of-two cell
-// where it is; the full validation run, distance policy only (12 s on one core in Release).
+// where it is; the full validation run, distance policy only (about 5 s on one core in Release,
+// 100 s under ASan/UBSan).
 // `long` (release only): its coarse twin under asan-ubsan is the 2 mm test above, which runs
 // the same scene and the same distance policy (docs/testing.md).
 TEST_CASE("contact validation: the distance switch's interface peak is within 5 % of the plateau at 0.5 mm",

@@ -309,6 +309,9 @@ TEST_CASE("hard case: the weak-shock run to the first separation, 150 m/s, 25 us
     std::printf("  first contact %.2f us, separation %.2f us; energy lost %.1f %%\n", c.sum.first_contact * 1e6,
                 c.sum.separation * 1e6, -100 * c.r.final_energy_change);
     check_invariants(c.r, 1e-12, 1e-6);
+    // The energy never rises (checked every step), so the long run's guard holds here a fortiori
+    // (measured 4.0 % lost at 25 us after contact).
+    CHECK(c.r.final_energy_change > -0.08);
     CHECK(c.sum.first_contact > 0);
     CHECK(c.sum.separation > c.sum.first_contact);
 }
