@@ -74,9 +74,7 @@ public:
     [[nodiscard]] double hugoniot_energy(double j) const { return 0.5 * hugoniot_pressure(j) * (1.0 - j) / rho0_; }
 
     /// Pressure at the end of the step. The standard form solves P together with the end-of-step
-    /// energy e = e_b - f P (see point_step), from its thermal part e_th = e - w_s (w_s the stored
-    /// elastic shear energy, point_step::shear_energy, which is not heat):
-    /// P = [P_H + Gamma rho (e_b - w_s - e_H)] / (1 + Gamma rho f).
+    /// energy e = e_b - f P (see point_step): P = [P_H + Gamma rho (e_b - e_H)] / (1 + Gamma rho f).
     template <class Real, class P>
     [[nodiscard]] Real pressure(const point_step<Real>& st, const P& p) const {
         check_singularity(double(st.J), p, st.step, st.time);
@@ -86,14 +84,13 @@ public:
         if constexpr (Ref == energy_reference::plastic_work) {
             return Real(ph + grho * double(p.template get<fields::plastic_work>()));
         } else {
-            const double eb = double(st.energy_before_pressure) - double(st.shear_energy);
+            const double eb = double(st.energy_before_pressure);
             return Real((ph + grho * (eb - hugoniot_energy(j))) / (1.0 + grho * double(st.pressure_work_factor)));
         }
     }
 
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
-    /// de = -P dV along an isentrope, for the time step's wave speed (never negative). It reads
-    /// the whole e, shear energy included (at most Y0^2 / (6 G rho), 0.19 J/kg for HMX).
+    /// de = -P dV along an isentrope, for the time step's wave speed (never negative).
     /// The compression is capped at the singularity margin (where pressure() stops the run),
     /// so the modulus is finite for any state.
     template <class Real, class P>
