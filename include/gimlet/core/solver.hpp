@@ -136,10 +136,6 @@ public:
             grid_.set_field_count(materials_.size());
             mass_gradient_.assign(grid_.entries(), vector::Zero());
         }
-        // Which components of a node's force the walls leave free (1) or take (0): the same
-        // projection apply_walls makes on velocities, for the forces of light nodes (below).
-        wall_free_.assign(grid_.entries(), vector::Ones());
-        grid_.apply_walls(wall_free_);
         set_up_slabs();
     }
 
@@ -540,43 +536,19 @@ private:
     // (PHYSICS.md section 1, step 3). With remap (MUSL), each particle's new momentum is
     // scattered back to the grid in the same pass (PHYSICS.md section 1, step 4): the gather
     // reads grid velocities only and the scatter writes grid momenta only.
-    //
-    // A node lighter than the mass cut-off has no velocity (never p/m of a near-zero mass), but
-    // the particles still put force on it: f_i = sum_p f_ip, f_ip = -V_p sigma_p G_ip +
-    // S_ip m_p b. Dropping f_i would lose momentum (the GIMP gradient at a support's edge is not
-    // small where the weight is: measured 1e-12 of a body's momentum in a 700 m/s cavity
-    // collapse), and dividing it by m_i flings the particles. Each particle takes back its own
-    // part, dv_p += dt f_ip / m_p, as far as the walls leave it free: sum_p m_p dv_p = dt f_i,
-    // so momentum is exact, and f_ip / m_p = sigma_p G_ip / rho_p stays bounded.
     void grid_to_particles(real dt, bool remap) {
         auto& x = particles_.template column<fields::position>();
         auto& v = particles_.template column<fields::velocity>();
         const auto& m = particles_.template column<fields::mass>();
-        const auto& sig = particles_.template column<fields::stress>();
         const real alpha = real(options_.pic_fraction);
-        const vector b = options_.body_force.template cast<real>();
         auto update = [&](std::size_t i) {
-            vector v_pic = vector::Zero(), dv = vector::Zero(), own = vector::Zero();
+            vector v_pic = vector::Zero(), dv = vector::Zero();
             const std::size_t base = field_base(i);
             const auto& st = stencils_[i];
-            bool light = false;
             st.for_each([&](std::size_t node, real w, const vector&) {
-                const std::size_t e = base + node;
-                v_pic += w * grid_.velocity[e];
-                dv += w * (grid_.velocity[e] - grid_.velocity_old[e]);
-                light = light || !(grid_.mass[e] > mass_cutoff_);
+                v_pic += w * grid_.velocity[base + node];
+                dv += w * (grid_.velocity[base + node] - grid_.velocity_old[base + node]);
             });
-            if (light) {
-                const matrix vs = current_volume(particles_[i]) * sig[i];
-                vector mb = m[i] * b;
-                if constexpr (store_type::template has<fields::external_acceleration>)
-                    mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
-                st.for_each([&](std::size_t node, real w, const vector& g) {
-                    const std::size_t e = base + node;
-                    if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
-                });
-                dv += dt / m[i] * own;
-            }
             x[i] += dt * v_pic;
             v[i] = (real(1) - alpha) * (v[i] + dv) + alpha * v_pic;
             if (remap) {
@@ -892,7 +864,6 @@ private:
     std::array<std::vector<int>, 3> colour_slabs_;
     step_timings timings_;
     real mass_cutoff_ = 0;
-    std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
     bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
     real dt_ = 0;
