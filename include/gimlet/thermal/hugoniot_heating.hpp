@@ -5,6 +5,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/thermal/concepts.hpp"
+#include "gimlet/thermal/detail/parameters.hpp"
 
 #include <cmath>
 #include <type_traits>
@@ -39,12 +40,7 @@ public:
                      double initial_temperature)
         : v0_(1.0 / density0), c0_(sound_speed), s_(slope), gamma_(gruneisen), cv_(specific_heat),
           t0_(initial_temperature) {
-        require_positive("thermal reference density rho0 (kg/m^3)", density0);
-        require_positive("thermal bulk sound speed c0 (m/s)", sound_speed);
-        require(std::isfinite(slope) && slope > 1.0, "thermal Hugoniot slope s", slope, "> 1");
-        require_non_negative("thermal Grueneisen parameter Gamma", gruneisen);
-        require_positive("specific heat c_v (J/(kg K))", specific_heat);
-        require_positive("initial temperature T0 (K)", initial_temperature);
+        detail::validate_shock_parameters(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature);
     }
 
     template <class P>

@@ -7,6 +7,7 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/thermal/concepts.hpp"
+#include "gimlet/thermal/detail/parameters.hpp"
 
 #include <array>
 #include <cmath>
@@ -57,12 +58,7 @@ public:
                           double initial_temperature, double cold_tolerance = 0.1)
         : rho0_(density0), c0_(sound_speed), s_(slope), gamma_(gruneisen), cv_(specific_heat),
           t0_(initial_temperature), cold_(cold_tolerance) {
-        require_positive("thermal reference density rho0 (kg/m^3)", density0);
-        require_positive("thermal bulk sound speed c0 (m/s)", sound_speed);
-        require(std::isfinite(slope) && slope > 1.0, "thermal Hugoniot slope s", slope, "> 1");
-        require_non_negative("thermal Grueneisen parameter Gamma", gruneisen);
-        require_positive("specific heat c_v (J/(kg K))", specific_heat);
-        require_positive("initial temperature T0 (K)", initial_temperature);
+        detail::validate_shock_parameters(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature);
         require_non_negative("cold_tolerance (K)", cold_tolerance);
         table_ = std::make_shared<const table>(build());
     }
@@ -81,10 +77,10 @@ public:
         const double below = reference_energy(j, p, st.step, st.time) - e_th;
         if (below > cv_ * cold_)
             throw numerical_error(describe_particle(p, st.step, st.time) + ": thermal energy e_th = " +
-                                  detail::to_text(e_th) + " J/kg is below the reference isentrope e_s(V) by " +
-                                  detail::to_text(below) + " J/kg (" + detail::to_text(below / cv_) +
-                                  " K, more than cold_tolerance " + detail::to_text(cold_) +
-                                  " K) at J = " + detail::to_text(j) + ": the numerics lost energy");
+                                  gimlet::detail::to_text(e_th) + " J/kg is below the reference isentrope e_s(V) by " +
+                                  gimlet::detail::to_text(below) + " J/kg (" + gimlet::detail::to_text(below / cv_) +
+                                  " K, more than cold_tolerance " + gimlet::detail::to_text(cold_) +
+                                  " K) at J = " + gimlet::detail::to_text(j) + ": the numerics lost energy");
         p.template get<fields::temperature>() = Real(isentrope(j) - below / cv_);
     }
 
@@ -100,7 +96,7 @@ public:
     /// at or beyond the singular compression J = 1 - 1/s.
     [[nodiscard]] double reference_energy(double j) const {
         require(std::isfinite(j) && j > j_sing(), "J = V/V0 of the reference isentrope", j,
-                "> 1 - 1/s = " + detail::to_text(j_sing()));
+                "> 1 - 1/s = " + gimlet::detail::to_text(j_sing()));
         return table_->at(*this, j);
     }
 
@@ -211,8 +207,8 @@ private:
     template <class P>
     [[nodiscard]] double reference_energy(double j, const P& p, std::size_t step, double time) const {
         if (!(j > j_sing()))
-            throw numerical_error(describe_particle(p, step, time) + ": J = " + detail::to_text(j) +
-                                  " is at or beyond the singular compression 1 - 1/s = " + detail::to_text(j_sing()) +
+            throw numerical_error(describe_particle(p, step, time) + ": J = " + gimlet::detail::to_text(j) +
+                                  " is at or beyond the singular compression 1 - 1/s = " + gimlet::detail::to_text(j_sing()) +
                                   " of the reference isentrope");
         return table_->at(*this, j);
     }
