@@ -89,6 +89,33 @@ TEST_CASE("isentrope temperature: the reference isentrope against an independent
     CHECK_THROWS_AS(th.reference_energy(1 - 1 / s), gimlet::invalid_parameter);
 }
 
+TEST_CASE("isentrope temperature: the reference isentrope is the EOS's own, on and off the table",
+          "[thermal][verification]") {
+    // de_s/dJ = -P(J, e_s) / rho0 with P from eos::mie_gruneisen's Hugoniot (P_H, e_H) and
+    // Gamma rho = Gamma rho0 / J, integrated by RK4 from e_s(1) = 0 in x = ln(J - (1 - 1/s)).
+    // The table spans 1 - s eta = 0.01 (J = 0.6192) to J = 3.003; 0.617 and 3.5 lie beyond it.
+    const gimlet::eos::mie_gruneisen<> eos{rho0, c0, s, Gamma};
+    const auto th = make_thermal();
+    const double j_sing = 1 - 1 / s;
+    auto slope = [&](double x, double e) {  // de/dx
+        const double j = j_sing + std::exp(x);
+        const double p = eos.hugoniot_pressure(j) + Gamma * rho0 / j * (e - eos.hugoniot_energy(j));
+        return -p / rho0 * (j - j_sing);
+    };
+    for (const double target : {0.617, 0.63, 0.7, 0.9, 1.2, 2.0, 3.5}) {
+        const int n = 20000;
+        const double x0 = std::log(1 - j_sing), x1 = std::log(target - j_sing), h = (x1 - x0) / n;
+        double e = 0, x = x0;
+        for (int k = 0; k < n; ++k, x = x0 + k * h) {
+            const double k1 = slope(x, e), k2 = slope(x + h / 2, e + h / 2 * k1), k3 = slope(x + h / 2, e + h / 2 * k2),
+                         k4 = slope(x + h, e + h * k3);
+            e += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+        }
+        INFO("J = " << target);
+        CHECK(th.reference_energy(target) == Approx(e).epsilon(1e-8).margin(cv * 1e-6));
+    }
+}
+
 TEST_CASE("isentrope temperature: on the Hugoniot it is the Walsh-Christian temperature", "[thermal][verification]") {
     // T(V, e_H(V)) against thermal::hugoniot_heating's integration of dT/dV along the Hugoniot
     // from T0 (PHYSICS of both: T ds = c_v dT + Gamma c_v T / V dV, de_H = T ds - P_H dV), in

@@ -119,7 +119,8 @@ private:
         double at(const isentrope_temperature& th, double j) const {
             const double x = std::log(j - th.j_sing());
             const double u = (x - x0) / dx;
-            if (!(u >= 0.0) || !(u < double(e.size() - 1))) return th.direct(j);
+            if (!(u >= 0.0)) return th.direct(j, 0);
+            if (!(u < double(e.size() - 1))) return th.direct(j, e.size() - 1);
             const auto k = static_cast<std::size_t>(u);
             const double t = u - double(k), t2 = t * t, t3 = t2 * t;
             // Cubic Hermite on [x_k, x_k+1] with the exact slopes.
@@ -164,13 +165,16 @@ private:
         return half * sum;
     }
 
-    /// e_s(J) integrated from J = 1 in steps no wider than the table's (for states off the table).
-    [[nodiscard]] double direct(double j) const {
-        const double xa = std::log(1.0 - j_sing()), xb = std::log(j - j_sing());
-        const auto steps = static_cast<std::size_t>(std::ceil(std::abs(xb - xa) / table_->dx)) + 1;
-        double sum = 0, prev = 1.0;
-        for (std::size_t k = 1; k <= steps; ++k) {
-            const double next = j_sing() + std::exp(xa + (xb - xa) * double(k) / double(steps));
+    /// e_s(J) for a state off the table: integrated onwards from the table's end node `k`
+    /// (int_1^J g = e_s(J_k) J_k^Gamma + int_{J_k}^J g), in steps no wider than the table's.
+    [[nodiscard]] double direct(double j, std::size_t k) const {
+        const table& t = *table_;
+        const double xa = t.x0 + t.dx * double(k), xb = std::log(j - j_sing());
+        const double ja = j_sing() + std::exp(xa);
+        const auto steps = static_cast<std::size_t>(std::ceil(std::abs(xb - xa) / t.dx)) + 1;
+        double sum = t.e[k] * std::pow(ja, gamma_), prev = ja;
+        for (std::size_t n = 1; n <= steps; ++n) {
+            const double next = j_sing() + std::exp(xa + (xb - xa) * double(n) / double(steps));
             sum += integral(prev, next);
             prev = next;
         }
