@@ -38,9 +38,9 @@ struct point_step : point_state<Real> {
     /// dt tr(D) / (2 rho): the share of the end-of-step pressure in the energy increment.
     Real pressure_work_factor = 0;
     /// The stored elastic shear energy per unit mass at the end of the step, s:s / (4 G rho)
-    /// (J/kg; zero without shear stiffness). It is part of e but not heat: the thermal part of
-    /// the energy that a temperature from the state sees is e - shear_energy
-    /// (docs/equations.md, thermal::isentrope_temperature).
+    /// (J/kg; zero without shear stiffness), computed when the material has a thermal policy.
+    /// It is part of e but not heat: the thermal part of the energy that a temperature from the
+    /// state sees is e - shear_energy (docs/equations.md, thermal::isentrope_temperature).
     Real shear_energy = 0;
     std::size_t step = 0;      ///< step number, for error messages
     double time = 0;           ///< simulated time at the start of the step (s), for messages

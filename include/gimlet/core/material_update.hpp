@@ -119,9 +119,12 @@ void update_material_point(const M& mat, const P& p,
     st.energy_before_pressure = e + dt / st.density * known.cwiseProduct(st.D).sum();
     st.pressure_work_factor = real(0.5) * dt * st.D.trace() / st.density;
     // The stored elastic shear energy s:s / (4 G rho) (linear elasticity of the deviator): in e,
-    // but not heat (docs/equations.md, thermal::isentrope_temperature).
-    const real shear = mat.strength.shear_modulus(static_cast<const point_state<real>&>(st), p);
-    st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
+    // but not heat (docs/equations.md, thermal::isentrope_temperature). Only a thermal policy
+    // reads it: a scene without temperature does not compute it.
+    if constexpr (M::thermal_type::enabled) {
+        const real shear = mat.strength.shear_modulus(static_cast<const point_state<real>&>(st), p);
+        st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
+    }
     const real pres = mat.eos.pressure(st, p);
     if (!std::isfinite(pres))
         throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");
