@@ -523,9 +523,9 @@ TEMPLATE_LIST_TEST_CASE("contact keeps HMX blocks from interpenetrating in a 300
 // 2 cells above them; the lower ones move up at 1.0 and 0.6 m/s, the upper one down at 1 m/s.
 // The nodes on the lower blocks' shared faces under the upper block carry three fields, so the
 // many-body correction (pairs in turn, repeated until they agree) acts there. Run until well after the release (1.5 T, T = 2L/c_L).
-// Bounds: total momentum to 1e-12 of the upper body's (round-off, as for two bodies; the mass
-// cut-off is 0 here because the solver's default cut-off drops the forces on nodes lighter than
-// 1e-12 of a particle, which loses ~1e-10 of the momentum whatever the contact policy); the
+// Bounds: total momentum to 1e-12 of the upper body's (round-off, as for two bodies, with the
+// default mass cut-off: the force on a node under it goes back to the particles that exerted it;
+// when it was dropped, ~1e-10 of the momentum was lost whatever the contact policy); the
 // total energy never above 1.01 of its start (contact may lose energy, never create it); the
 // upper block's particle domains overlap neither lower block's by 0.1 cell or more (as in
 // test 5; measured body-wide, the highest lower-block domain edge minus the lowest upper-block
@@ -552,9 +552,7 @@ three_result three_blocks() {
     sc.add_body(gimlet::scene::box<S>(vec(0, y0), vec(4 * h, y1)), elastic(), vec(0, 1.0), 2, "lower left");
     sc.add_body(gimlet::scene::box<S>(vec(4 * h, y0), vec(8 * h, y1)), elastic(), vec(0, 0.6), 2, "lower right");
     sc.add_body(gimlet::scene::box<S>(vec(0, y2), vec(8 * h, y2 + length * h)), elastic(), vec(0, -1.0), 2, "upper");
-    gimlet::solver_options<S> opt;
-    opt.mass_cutoff = 0;
-    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, typename Case::type> sol(sc, opt, Case::make());
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, typename Case::type> sol(sc, {}, Case::make());
     namespace f = gimlet::fields;
     const auto& ps = sol.particles();
     auto momentum = [&] { return gimlet::diagnostics::linear_momentum(sol); };
