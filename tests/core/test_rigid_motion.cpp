@@ -125,7 +125,7 @@ TEMPLATE_LIST_TEST_CASE("rigid rotation produces no stress", "[core][verificatio
             S::matrix L = S::matrix::Zero();
             st.for_each([&](std::size_t node, double, const S::vector& grad) { L += v[node] * grad.transpose(); });
             REQUIRE((L + L.transpose()).norm() < 1e-12 * omega);
-            gimlet::update_material_point(mat, p, L, dt, std::size_t(step), step * dt);
+            gimlet::update_material_point(mat, p, L, dt, gs.cell, std::size_t(step), step * dt);
         }
     }
     const auto& p0 = store[0];

@@ -156,9 +156,9 @@ TEST_CASE("bad material constants are refused, naming the constant and its range
         {"specific heat", with_hmx([](auto& c) { c.specific_heat = 0; }), "specific heat c_v (J/(kg K))", "finite and > 0"},
         {"initial temperature", with_hmx([](auto& c) { c.temperature = -5; }), "initial temperature T0 (K)",
          "finite and > 0"},
-        {"viscosity c_Q", [] { gimlet::viscosity::bulk q(-1.5); }, "artificial viscosity quadratic coefficient c_Q",
+        {"viscosity b2", [] { gimlet::viscosity::bulk q(-1.2); }, "artificial viscosity quadratic coefficient b2",
          "finite and >= 0"},
-        {"viscosity c_L", [] { gimlet::viscosity::bulk q(1.5, not_a_number); }, "artificial viscosity linear coefficient c_L",
+        {"viscosity b1", [] { gimlet::viscosity::bulk q(1.2, not_a_number); }, "artificial viscosity linear coefficient b1",
          "finite and >= 0"},
     });
 }

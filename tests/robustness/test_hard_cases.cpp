@@ -323,7 +323,7 @@ TEST_CASE("hard case: uniaxial HMX impact towards the Mie-Grueneisen singularity
     const double cell = 0.25e-3, length = 5e-3, s_slope = 2.6;
     auto t_end = [&](double v) { return 0.6 * length / (2740.0 + s_slope * v); };  // shock 60 % through
 
-    SECTION("2000 m/s: eta up to 0.34, stays finite and balanced") {
+    SECTION("2000 m/s: eta up to 0.32, stays finite and balanced") {
         const double v = 2000;
         auto sol = make_strip(v, cell, length, t_end(v));
         record r;
@@ -334,15 +334,31 @@ TEST_CASE("hard case: uniaxial HMX impact towards the Mie-Grueneisen singularity
         std::printf("  max eta %.4f (1 - s eta = %.4f); energy lost %.1f %%\n", r.max_compression,
                     1 - s_slope * r.max_compression, -100 * r.final_energy_change);
         check_invariants(r, 1e-12, 1e-6);
-        CHECK(r.max_compression > 0.3);                       // close to the limit (measured 0.3405)
+        // The steady Hugoniot state has eta = 0.129; the first steps over-compress the contact
+        // plane to 0.3248 (0.3405 with the particle-scale viscosity of before).
+        CHECK(r.max_compression > 0.3);                       // close to the limit
         CHECK(1 - s_slope * r.max_compression > 0.05);        // but short of the stop
     }
-    // Beyond: 4000 m/s has a steady state at 1 - s eta = 0.21, but the impact's first steps
-    // over-compress the particles at the contact plane (measured: the stop comes between 3000 and
-    // 3500 m/s with USF at this cell); 30 km/s is beyond the limit on the Hugoniot itself and
-    // jumps past 1/s within one step. Both must stop with the EOS's numerical_error naming the
-    // particle, its position and the step, every state before it finite.
-    for (const double v : {4000.0, 30000.0}) {
+    SECTION("4000 m/s: runs through, short of the limit") {
+        // Steady state at 1 - s eta = 0.21, contact plane over-compressed to eta = 0.3645
+        // (1 - s eta = 0.052). With the particle-scale viscosity of before, this stopped at the
+        // singularity (the stop came between 3000 and 3500 m/s; now between 4000 and 5000).
+        const double v = 4000;
+        auto sol = make_strip(v, cell, length, t_end(v));
+        record r;
+        r.name = "strip 4000 m/s";
+        r.momentum_scale = 0.5 * gimlet::diagnostics::total_mass(sol) * v;
+        run_watched(sol, t_end(v), r);
+        print(r);
+        check_invariants(r, 1e-12, 1e-6);
+        CHECK(r.time == Approx(t_end(v)));
+    }
+    // Beyond: 5000 m/s has a steady state at 1 - s eta = 0.17, but the impact's first steps
+    // over-compress the particles at the contact plane past the margin (step 23); 30 km/s is
+    // beyond the limit on the Hugoniot itself and jumps past 1/s within two steps. Both must stop
+    // with the EOS's numerical_error naming the particle, its position and the step, every state
+    // before it finite.
+    for (const double v : {5000.0, 30000.0}) {
         DYNAMIC_SECTION(v << " m/s: stops cleanly at the singularity") {
             auto sol = make_strip(v, cell, length, t_end(v));
             record r;

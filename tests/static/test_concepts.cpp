@@ -72,6 +72,8 @@ struct constant_q {
     using required_fields = gimlet::field_list<>;
     template <class Real, class P>
     Real pressure(const gimlet::point_step<Real>&, Real, const P&) const { return Real(1); }
+    template <class Real, class P>
+    Real signal_speed(Real c, Real, const P&) const { return c; }  // a constant q adds no stiffness
 };
 struct viscosity_enabled_without_pressure {
     static constexpr bool enabled = true;

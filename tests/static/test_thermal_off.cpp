@@ -68,9 +68,12 @@ static_assert(ugimp_solver<S3, on_material>::store_type::has<gimlet::fields::tem
 static_assert(ugimp_solver<S2, on_material>::particle_fields::size ==
               ugimp_solver<S2, off_material>::particle_fields::size + 1);
 static_assert(!ugimp_solver<S2, probe_material>::store_type::has<gimlet::fields::temperature>);
-// Viscosity off adds no column either.
-static_assert(ugimp_solver<S2, hmx_like<gimlet::thermal::none, gimlet::viscosity::none>>::particle_fields::size ==
+// Viscosity off drops the one column the bulk viscosity keeps (its compression rate, for the
+// time step).
+static_assert(ugimp_solver<S2, hmx_like<gimlet::thermal::none, gimlet::viscosity::none>>::particle_fields::size + 1 ==
               ugimp_solver<S2, off_material>::particle_fields::size);
+static_assert(!ugimp_solver<S2, hmx_like<gimlet::thermal::none, gimlet::viscosity::none>>::store_type::has<
+              gimlet::fields::compression_rate>);
 
 namespace {
 
@@ -190,9 +193,9 @@ TEST_CASE("viscosity::none adds no work", "[verification][static]") {
     S2::matrix L = S2::matrix::Zero();
     L(1, 1) = -1e5;  // 1e-3 strain per 1e-8 s step
     for (std::size_t step = 0; step < 50; ++step) {
-        gimlet::update_material_point(none, store[0], L, 1e-8, step, 1e-8 * double(step));
-        gimlet::update_material_point(zero, store[1], L, 1e-8, step, 1e-8 * double(step));
-        gimlet::update_material_point(bulk, store[2], L, 1e-8, step, 1e-8 * double(step));
+        gimlet::update_material_point(none, store[0], L, 1e-8, 0.5e-3, step, 1e-8 * double(step));
+        gimlet::update_material_point(zero, store[1], L, 1e-8, 0.5e-3, step, 1e-8 * double(step));
+        gimlet::update_material_point(bulk, store[2], L, 1e-8, 0.5e-3, step, 1e-8 * double(step));
     }
     const auto& e = store.column<gimlet::fields::specific_internal_energy>();
     const auto& sig = store.column<gimlet::fields::stress>();

@@ -71,7 +71,7 @@ struct material_point {
     }
     [[nodiscard]] auto p() { return store[0]; }
     void step(const typename S::matrix& L, double dt) {
-        gimlet::update_material_point(mat, p(), L, dt, steps++, time);
+        gimlet::update_material_point(mat, p(), L, dt, 1e-3, steps++, time);  // cell: no viscosity here
         time += dt;
     }
     [[nodiscard]] Eigen::Matrix3d dev() { return gimlet::strength::deviator<double>(gimlet::stress3(p())); }

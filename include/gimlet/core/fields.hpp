@@ -172,6 +172,12 @@ struct plastic_work {
     template <class S> using type = typename S::real;
     static constexpr const char* name = "plastic_work";
 };
+/// Volumetric compression rate -tr D of the particle's last update where it compressed, else 0
+/// (1/s); viscosity::bulk keeps it for the stable time step.
+struct compression_rate {
+    template <class S> using type = typename S::real;
+    static constexpr const char* name = "compression_rate";
+};
 /// Temperature T (K); only scenes with a thermal policy carry it.
 struct temperature {
     template <class S> using type = typename S::real;

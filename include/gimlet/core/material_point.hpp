@@ -29,13 +29,14 @@ struct point_step : point_state<Real> {
     Real J_old = 1;            ///< det F at the start of the step
     tensor3 D = tensor3::Zero();  ///< rate of deformation, sym(L)
     tensor3 W = tensor3::Zero();  ///< spin, skew(L)
-    Real length = 0;           ///< particle length scale (current volume^(1/dim)), for viscosity
+    Real length = 0;           ///< grid cell size h: the length a shock is spread over, for viscosity
     /// Specific internal energy at the end of the step without the pressure's own work:
-    /// e^n + (dt/rho) sigma_mid' : D with sigma_mid' the midpoint stress less the end-of-step
-    /// pressure. The end-of-step energy is `energy_before_pressure - pressure_work_factor * P`,
-    /// so an energy-dependent EOS can solve for P and e together (see eos::mie_gruneisen).
+    /// e^n + dt v_mid sigma_mid' : D with sigma_mid' the midpoint stress less the end-of-step
+    /// pressure and v_mid = (1/rho^n + 1/rho^{n+1}) / 2. The end-of-step energy is
+    /// `energy_before_pressure - pressure_work_factor * P`, so an energy-dependent EOS can solve
+    /// for P and e together (see eos::mie_gruneisen).
     Real energy_before_pressure = 0;
-    /// dt tr(D) / (2 rho): the share of the end-of-step pressure in the energy increment.
+    /// dt tr(D) v_mid / 2: the share of the end-of-step pressure in the energy increment.
     Real pressure_work_factor = 0;
     /// The stored elastic shear energy per unit mass at the end of the step, s:s / (4 G rho)
     /// (J/kg; zero without shear stiffness), computed when the material has a thermal policy.

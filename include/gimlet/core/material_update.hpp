@@ -67,12 +67,14 @@ template <Material M, class P>
 
 /// Advance particle p over dt given its velocity gradient L:
 /// F <- (I - dt L/2)^-1 (I + dt L/2) F, then s from the strength law, P from the EOS, q from the
-/// viscosity, sigma = s - (P + q) I, e += dt/rho sigma_mid : D, and the thermal update.
+/// viscosity (over the grid cell size `cell`), sigma = s - (P + q) I,
+/// e += dt v_mid sigma_mid : D, and the thermal update.
 /// Throws numerical_error (naming particle, position and step) if F inverts.
 template <Material M, class P>
 void update_material_point(const M& mat, const P& p,
                            const typename P::space_type::matrix& L,
-                           typename P::space_type::real dt, std::size_t step, double time) {
+                           typename P::space_type::real dt, typename P::space_type::real cell,
+                           std::size_t step, double time) {
     using S = typename P::space_type;
     using real = typename S::real;
     using matrix = typename S::matrix;
@@ -102,22 +104,25 @@ void update_material_point(const M& mat, const P& p,
     const tensor3 l3 = embed3<real, dim>(L);
     st.D = real(0.5) * (l3 + l3.transpose());
     st.W = real(0.5) * (l3 - l3.transpose());
-    const real volume = st.J * p.template get<fields::volume0>();
-    if constexpr (dim == 2) st.length = std::sqrt(volume);
-    else st.length = std::cbrt(volume);
+    st.length = cell;
 
     const tensor3 sigma_old = stress3(p);
     tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, longitudinal_wave_speed(p, mat), p);
-    // Stress power per unit mass, midpoint in time (PHYSICS.md section 1): de = dt/rho sigma:D,
-    // with sigma^{n+1} = s - (P + q) I. The part without P^{n+1} is known before the EOS is
-    // called; the rest is -pressure_work_factor * P^{n+1}.
+    // Stress power per unit mass, midpoint in time (PHYSICS.md section 1): de = dt v_mid sigma:D,
+    // with sigma^{n+1} = s - (P + q) I and the midpoint specific volume
+    // v_mid = (v^n + v^{n+1}) / 2 = (1 + J^n / J^{n+1}) / (2 rho^{n+1}): with the end-of-step
+    // v alone, de = -P dv is first-order short in the step's strain (7 % on a shock's landing
+    // step), and an isentrope loses that much heat per cycle (docs/equations.md). The part
+    // without P^{n+1} is known before the EOS is called; the rest is
+    // -pressure_work_factor * P^{n+1}.
     real& e = p.template get<fields::specific_internal_energy>();
+    const real v_mid = real(0.5) * (real(1) + j_old / st.J) / st.density;
     const tensor3 known = real(0.5) * (sigma_old + s - q * tensor3::Identity());
-    st.energy_before_pressure = e + dt / st.density * known.cwiseProduct(st.D).sum();
-    st.pressure_work_factor = real(0.5) * dt * st.D.trace() / st.density;
+    st.energy_before_pressure = e + dt * v_mid * known.cwiseProduct(st.D).sum();
+    st.pressure_work_factor = real(0.5) * dt * st.D.trace() * v_mid;
     // The stored elastic shear energy s:s / (4 G rho) (linear elasticity of the deviator): in e,
     // but not heat (docs/equations.md, thermal::isentrope_temperature). Only a thermal policy
     // reads it: a scene without temperature does not compute it.

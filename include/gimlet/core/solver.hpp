@@ -173,14 +173,17 @@ public:
     }
 
     /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
-    /// (PHYSICS.md section 1, step 6).
+    /// (PHYSICS.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
+    /// artificial viscosity acts (viscosity::Viscosity).
     [[nodiscard]] real stable_time_step() const {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         real fastest = 0;
         GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(max : fastest) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
-            const real c = wave_speed(p);
+            real c = wave_speed(p);
+            if constexpr (M::viscosity_type::enabled)
+                c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
             fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
         }
         real dt = real(options_.max_time_step);
@@ -635,7 +638,7 @@ private:
         matrix L = matrix::Zero();
         const std::size_t base = field_base(i);
         stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[base + node] * g.transpose(); });
-        gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, steps_, double(time_));
+        gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
     }
 
     // The step's last particle pass: the constitutive update from the grid velocities (MUSL,

@@ -32,7 +32,7 @@ struct hmx_constants {
 /// \tparam Ref  e - e_H in the EOS: the standard internal-energy form (default) or the paper's
 ///              plastic-work variant.
 /// \tparam X    expansion behaviour of the Hugoniot heating (default: the paper's form).
-/// \tparam V    artificial viscosity (default: bulk, LS-DYNA coefficients).
+/// \tparam V    artificial viscosity (default: bulk, Abaqus/Explicit coefficients on the cell).
 template <eos::energy_reference Ref = eos::energy_reference::internal_energy,
           thermal::expansion X = thermal::expansion::hugoniot, class V = viscosity::bulk>
 using hmx_material = material<strength::von_mises, eos::mie_gruneisen<Ref>, thermal::hugoniot_heating<X>, V>;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Bulk artificial viscosity with linear and quadratic terms.
+/// Bulk artificial viscosity with linear and quadratic terms on the cell scale.
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/viscosity/concepts.hpp"
@@ -10,37 +10,54 @@
 
 namespace gimlet::viscosity {
 
-/// \f[ q = \rho\, l \left( c_Q\, l\, (\mathrm{tr} D)^2 + c_L\, c\, |\mathrm{tr} D| \right)
-///     \quad \text{if } \mathrm{tr} D < 0, \qquad q = 0 \text{ otherwise} \f]
-/// (von Neumann & Richtmyer 1950 quadratic term, Landshoff 1955 linear term; PHYSICS.md
-/// section 5), l the particle length scale, c the current longitudinal wave speed. It acts in
-/// compression only and adds to the EOS pressure; its work q |tr D| / rho enters the specific
-/// internal energy through the stress power, so it heats the material in the EOS's energy.
-/// Defaults are LS-DYNA's bulk-viscosity defaults (quadratic 1.5, linear 0.06).
+/// \f[ q = \rho\, h \left( b_2^2\, h\, \dot\varepsilon_v^2 + b_1\, c\, |\dot\varepsilon_v| \right)
+///     \quad \text{if } \dot\varepsilon_v = \mathrm{tr} D < 0, \qquad q = 0 \text{ otherwise} \f]
+/// (von Neumann & Richtmyer 1950 quadratic term, Landshoff 1955 linear term, in the form of the
+/// Abaqus/Explicit bulk viscosity; docs/equations.md), h the grid cell size (the length over
+/// which the grid resolves a shock), c the current longitudinal wave speed. It acts in
+/// compression only and adds to the EOS pressure; its work enters the specific internal energy
+/// through the stress power, so it heats the material. Defaults are Abaqus/Explicit's,
+/// b1 = 0.06 and b2 = 1.2 (quadratic coefficient b2^2 = 1.44).
+///
+/// It also bounds the time step: with q, a compressing particle's stable step is that of a
+/// signal speed Q + sqrt(Q^2 + c^2), Q = b1 c + b2^2 h |tr D| (the damped-oscillator limit
+/// dt = (2 / omega) (sqrt(1 + xi^2) - xi), xi = Q / c, of the Abaqus/Explicit theory manual).
 class bulk {
 public:
     static constexpr bool enabled = true;
-    using required_fields = field_list<>;
+    using required_fields = field_list<fields::compression_rate>;
 
-    /// \param quadratic c_Q >= 0; \param linear c_L >= 0.
-    explicit bulk(double quadratic = 1.5, double linear = 0.06) : cq_(quadratic), cl_(linear) {
-        require_non_negative("artificial viscosity quadratic coefficient c_Q", quadratic);
-        require_non_negative("artificial viscosity linear coefficient c_L", linear);
+    /// \param quadratic b2 >= 0 (q's quadratic term has b2 squared); \param linear b1 >= 0.
+    explicit bulk(double quadratic = 1.2, double linear = 0.06) : b2_(quadratic), b1_(linear) {
+        require_non_negative("artificial viscosity quadratic coefficient b2", quadratic);
+        require_non_negative("artificial viscosity linear coefficient b1", linear);
     }
 
+    /// q (Pa) for the step `st` (st.length is the cell size); records the compression rate.
     template <class Real, class P>
-    [[nodiscard]] Real pressure(const point_step<Real>& st, Real sound_speed, const P& /*p*/) const {
-        const Real div = st.D.trace();
-        if (!(div < 0)) return Real(0);
-        const Real l = st.length;
-        return st.density * l * (Real(cq_) * l * div * div + Real(cl_) * sound_speed * (-div));
+    [[nodiscard]] Real pressure(const point_step<Real>& st, Real sound_speed, const P& p) const {
+        const Real rate = st.D.trace() < 0 ? -st.D.trace() : Real(0);
+        p.template get<fields::compression_rate>() = rate;
+        if (!(rate > 0)) return Real(0);
+        const Real h = st.length;
+        return st.density * h * (Real(b2_ * b2_) * h * rate * rate + Real(b1_) * sound_speed * rate);
     }
 
-    [[nodiscard]] double quadratic() const noexcept { return cq_; }
-    [[nodiscard]] double linear() const noexcept { return cl_; }
+    /// The signal speed that sets the stable time step of particle p with wave speed c on cells
+    /// of size h: c without compression, Q + sqrt(Q^2 + c^2) with it (above).
+    template <class Real, class P>
+    [[nodiscard]] Real signal_speed(Real sound_speed, Real h, const P& p) const {
+        const Real rate = p.template get<fields::compression_rate>();
+        if (!(rate > 0)) return sound_speed;
+        const Real q = Real(b1_) * sound_speed + Real(b2_ * b2_) * h * rate;
+        return q + std::sqrt(q * q + sound_speed * sound_speed);
+    }
+
+    [[nodiscard]] double quadratic() const noexcept { return b2_; }
+    [[nodiscard]] double linear() const noexcept { return b1_; }
 
 private:
-    double cq_, cl_;
+    double b2_, b1_;
 };
 
 static_assert(Viscosity<bulk>);

@@ -15,7 +15,11 @@ namespace gimlet::viscosity {
 ///   `if constexpr` when it is false, so an inactive policy costs nothing.
 /// - `fields`: field_list of the per-particle state it needs.
 /// - `pressure(step, sound_speed, p)`: the viscous pressure q >= 0 (Pa), added to the EOS
-///   pressure: sigma = s - (P + q) I.
+///   pressure: sigma = s - (P + q) I. `step.length` is the grid cell size.
+/// - `signal_speed(sound_speed, cell, p)`: the speed (m/s, >= sound_speed) that sets particle p's
+///   stable time step, dt = C h / max_p (signal_speed + |v_p|): a viscosity damps the fastest
+///   mode and so shortens the step (return sound_speed where q is zero). The solver calls it
+///   before each step, from the state the last update left.
 template <class V>
 concept Viscosity = requires {
     { V::enabled } -> std::convertible_to<bool>;
@@ -26,6 +30,8 @@ concept Viscosity = requires {
                                 const archetype_particle<3, V>& p3) {
     { v.pressure(st, c, p2) } -> std::convertible_to<double>;
     { v.pressure(st, c, p3) } -> std::convertible_to<double>;
+    { v.signal_speed(c, c, p2) } -> std::convertible_to<double>;
+    { v.signal_speed(c, c, p3) } -> std::convertible_to<double>;
 });
 
 }  // namespace gimlet::viscosity
