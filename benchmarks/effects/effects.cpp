@@ -15,7 +15,7 @@ namespace {
 
 using S = bench::S2;
 using mg = gimlet::eos::mie_gruneisen<>;
-using heating = gimlet::thermal::hugoniot_heating<>;
+using heating = gimlet::thermal::isentrope_temperature;  // make_hmx()'s default
 
 struct hmx_parts {
     gimlet::materials::hmx_constants c;
@@ -72,6 +72,9 @@ int main(int argc, char** argv) try {
                            cell, steps, repeats, threads);
     run<contact::distance>("plasticity off", material<strength::linear_elastic, mg, heating, viscosity::bulk>{
                                                  h.c.density, h.elastic(), h.eos(), h.heat(), viscosity::bulk{}},
+                           cell, steps, repeats, threads);
+    run<contact::distance>("paper's Walsh-Christian heating (instead of the isentrope temperature)",
+                           materials::make_hmx<eos::energy_reference::internal_energy, materials::paper_temperature>(),
                            cell, steps, repeats, threads);
     run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);

@@ -47,7 +47,7 @@ template <class T, class V = gimlet::viscosity::bulk>
 using hmx_like = gimlet::material<vm, mg, T, V>;
 
 using off_material = hmx_like<gimlet::thermal::none>;
-using on_material = gimlet::materials::hmx_material<>;  // hugoniot_heating
+using on_material = gimlet::materials::hmx_material<>;  // isentrope_temperature
 using probe_material = hmx_like<thermal_that_must_not_compile>;
 
 template <class S, class M>
@@ -59,7 +59,7 @@ using ugimp_solver = gimlet::solver<S, gimlet::shape::ugimp, M>;
 static_assert(!gimlet::thermal::none::enabled);
 static_assert(!gimlet::viscosity::none::enabled);
 static_assert(std::is_same_v<gimlet::viscosity::none::required_fields, gimlet::field_list<>>);
-static_assert(std::is_same_v<on_material, hmx_like<gimlet::thermal::hugoniot_heating<>>>);
+static_assert(std::is_same_v<on_material, hmx_like<gimlet::thermal::isentrope_temperature>>);
 static_assert(!ugimp_solver<S2, off_material>::store_type::has<gimlet::fields::temperature>);
 static_assert(!ugimp_solver<S3, off_material>::store_type::has<gimlet::fields::temperature>);
 static_assert(ugimp_solver<S2, on_material>::store_type::has<gimlet::fields::temperature>);

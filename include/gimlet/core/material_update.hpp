@@ -11,6 +11,7 @@
 #include "gimlet/core/material.hpp"
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/space.hpp"
+#include "gimlet/eos/concepts.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -124,9 +125,9 @@ void update_material_point(const M& mat, const P& p,
     st.energy_before_pressure = e + dt * v_mid * known.cwiseProduct(st.D).sum();
     st.pressure_work_factor = real(0.5) * dt * st.D.trace() * v_mid;
     // The stored elastic shear energy s:s / (4 G rho) (linear elasticity of the deviator): in e,
-    // but not heat (docs/equations.md, thermal::isentrope_temperature). Only a thermal policy
-    // reads it: a scene without temperature does not compute it.
-    if constexpr (M::thermal_type::enabled) {
+    // but not heat (docs/equations.md, thermal::isentrope_temperature). Computed only for a
+    // thermal policy or an EOS that reads it (eos::reads_shear_energy).
+    if constexpr (M::thermal_type::enabled || eos::reads_shear_energy<typename M::eos_type>) {
         const real shear = mat.strength.shear_modulus(static_cast<const point_state<real>&>(st), p);
         st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
     }

@@ -17,6 +17,9 @@ namespace gimlet::eos {
 ///   (naming the particle and step) rather than return a non-finite value.
 /// - `bulk_modulus(state, p)`: the current tangent bulk modulus K = -V dP/dV (Pa), for the
 ///   time step.
+/// - optional `static constexpr bool reads_shear_energy = true`: the pressure reads
+///   `step.shear_energy` (the stored elastic shear energy, which is not heat). The material
+///   update computes it only for such an EOS or a thermal policy; otherwise it is zero.
 template <class E>
 concept Eos = requires {
     typename E::required_fields;
@@ -28,5 +31,12 @@ concept Eos = requires {
     { e.bulk_modulus(ps, p2) } -> std::convertible_to<double>;
     { e.bulk_modulus(ps, p3) } -> std::convertible_to<double>;
 };
+
+/// True if E declares that its pressure reads point_step::shear_energy (see Eos).
+template <class E>
+inline constexpr bool reads_shear_energy = [] {
+    if constexpr (requires { E::reads_shear_energy; }) return bool(E::reads_shear_energy);
+    else return false;
+}();
 
 }  // namespace gimlet::eos

@@ -40,6 +40,8 @@ class mie_gruneisen {
 public:
     using required_fields = std::conditional_t<Ref == energy_reference::plastic_work,
                                                field_list<fields::plastic_work>, field_list<>>;
+    /// The standard form takes the thermal energy e_th = e - s:s/(4 G rho) (eos::Eos).
+    static constexpr bool reads_shear_energy = Ref == energy_reference::internal_energy;
 
     /// \param density0 rho_0 (kg/m^3) > 0; \param sound_speed c_0 (m/s) > 0;
     /// \param slope s of U_s = c_0 + s U_p, > 1 (the Hugoniot is convex; s <= 1 has no
@@ -74,7 +76,9 @@ public:
     [[nodiscard]] double hugoniot_energy(double j) const { return 0.5 * hugoniot_pressure(j) * (1.0 - j) / rho0_; }
 
     /// Pressure at the end of the step. The standard form solves P together with the end-of-step
-    /// energy e = e_b - f P (see point_step): P = [P_H + Gamma rho (e_b - e_H)] / (1 + Gamma rho f).
+    /// energy e = e_b - f P (see point_step), from its thermal part e_th = e - w_s (w_s the stored
+    /// elastic shear energy, point_step::shear_energy, which is not heat: the Grueneisen term is
+    /// the thermal pressure): P = [P_H + Gamma rho (e_b - w_s - e_H)] / (1 + Gamma rho f).
     template <class Real, class P>
     [[nodiscard]] Real pressure(const point_step<Real>& st, const P& p) const {
         check_singularity(double(st.J), p, st.step, st.time);
@@ -84,7 +88,7 @@ public:
         if constexpr (Ref == energy_reference::plastic_work) {
             return Real(ph + grho * double(p.template get<fields::plastic_work>()));
         } else {
-            const double eb = double(st.energy_before_pressure);
+            const double eb = double(st.energy_before_pressure) - double(st.shear_energy);
             return Real((ph + grho * (eb - hugoniot_energy(j))) / (1.0 + grho * double(st.pressure_work_factor)));
         }
     }

@@ -10,6 +10,7 @@
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/strength/von_mises.hpp"
 #include "gimlet/thermal/hugoniot_heating.hpp"
+#include "gimlet/thermal/isentrope_temperature.hpp"
 #include "gimlet/viscosity/bulk.hpp"
 
 namespace gimlet::materials {
@@ -31,24 +32,34 @@ struct hmx_constants {
 /// HMX as a gimlet material.
 /// \tparam Ref  e - e_H in the EOS: the standard internal-energy form (default) or the paper's
 ///              plastic-work variant.
-/// \tparam X    expansion behaviour of the Hugoniot heating (default: the paper's form).
+/// \tparam T    the temperature: thermal::isentrope_temperature (default; T(V, e) from the EOS's
+///              reference isentrope, docs/equations.md), paper_temperature (the paper's
+///              Walsh-Christian heating, for side-by-side reproduction), any thermal policy built
+///              from (rho0, c0, s, Gamma, c_v, T0), or thermal::none.
 /// \tparam V    artificial viscosity (default: bulk, Abaqus/Explicit coefficients on the cell).
 template <eos::energy_reference Ref = eos::energy_reference::internal_energy,
-          thermal::expansion X = thermal::expansion::hugoniot, class V = viscosity::bulk>
-using hmx_material = material<strength::von_mises, eos::mie_gruneisen<Ref>, thermal::hugoniot_heating<X>, V>;
+          class T = thermal::isentrope_temperature, class V = viscosity::bulk>
+using hmx_material = material<strength::von_mises, eos::mie_gruneisen<Ref>, T, V>;
+
+/// The reference paper's temperature: Walsh-Christian integrated in V plus plastic work.
+using paper_temperature = thermal::hugoniot_heating<thermal::expansion::hugoniot>;
 
 /// Build the HMX material from the paper's constants (or modified ones).
 template <eos::energy_reference Ref = eos::energy_reference::internal_energy,
-          thermal::expansion X = thermal::expansion::hugoniot, class V = viscosity::bulk>
-[[nodiscard]] hmx_material<Ref, X, V> make_hmx(const hmx_constants& c = {}, const V& viscosity = V{}) {
+          class T = thermal::isentrope_temperature, class V = viscosity::bulk>
+[[nodiscard]] hmx_material<Ref, T, V> make_hmx(const hmx_constants& c = {}, const V& viscosity = V{}) {
     // Shear from E and nu; pressure from the EOS (the elastic bulk modulus E/(3(1-2nu)) is not
     // used: PHYSICS.md section 7).
     require_positive("density rho0 (kg/m^3)", c.density);  // before the EOS and thermal name it
     const auto moduli = elastic_moduli::from_young_poisson(c.young, c.poisson);
+    auto thermal = [&] {
+        if constexpr (T::enabled) return T{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat, c.temperature};
+        else return T{};
+    };
     return {c.density,
             strength::von_mises{moduli.shear, c.yield_stress, c.hardening},
             eos::mie_gruneisen<Ref>{c.density, c.sound_speed, c.slope, c.gruneisen},
-            thermal::hugoniot_heating<X>{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat, c.temperature},
+            thermal(),
             viscosity};
 }
 

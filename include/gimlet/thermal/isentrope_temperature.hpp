@@ -36,8 +36,8 @@ namespace gimlet::thermal {
 /// is constant along any isentrope); and it is bounded by the energy a particle actually holds.
 ///
 /// \f$ e_{th} \f$ is the specific internal energy less the stored elastic shear energy
-/// \f$ s:s/(4G\rho) \f$ (point_step::shear_energy), which is not heat (eos::mie_gruneisen still
-/// takes the whole e: docs/equations.md says why, and the difference is below 2e-4 K). A particle whose \f$ e_{th} \f$ falls below \f$ e_s(V) \f$ by more than
+/// \f$ s:s/(4G\rho) \f$ (point_step::shear_energy), which is not heat; the same \f$ e_{th} \f$ feeds
+/// eos::mie_gruneisen's standard form. A particle whose \f$ e_{th} \f$ falls below \f$ e_s(V) \f$ by more than
 /// \f$ c_v \f$ times `cold_tolerance` (default 0.1 K) has lost energy to the numerics: the update
 /// stops the run with a numerical_error naming it, and never clamps it.
 ///
