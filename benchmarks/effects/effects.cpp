@@ -29,10 +29,12 @@ struct hmx_parts {
 };
 
 template <class Contact, class M>
-void run(const char* name, const M& mat, double cell, int steps, int repeats, int threads) {
+void run(const char* name, const M& mat, double cell, int steps, int repeats, int threads,
+         bool volumetric_average = false) {
     using solver = gimlet::solver<S, gimlet::shape::ugimp, M, Contact>;
     gimlet::solver_options<S> opt;
     opt.threads = threads;
+    opt.volumetric_average = volumetric_average;
     std::vector<double> seconds;
     std::size_t particles = 0, bytes = 0;
     for (int k = 0; k < repeats; ++k) {
@@ -76,6 +78,7 @@ int main(int argc, char** argv) try {
     run<contact::distance>("paper's Walsh-Christian heating (instead of the isentrope temperature)",
                            materials::make_hmx<eos::energy_reference::internal_energy, materials::paper_temperature>(),
                            cell, steps, repeats, threads);
+    run<contact::distance>("volumetric average on (solver_options)", materials::make_hmx(), cell, steps, repeats, threads, true);
     run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::single_field>("all off: elastic + Mie-Grueneisen + single field",

@@ -43,6 +43,7 @@ struct settings {
     // s after the nominal contact: more snapshots at these times (the paper's figure times)
     std::vector<double> snapshots_after_contact;
     double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
+    bool volumetric_average = false; // solver_options::volumetric_average
     int threads = 0;
 };
 
@@ -123,6 +124,7 @@ struct sample {
     double D = 0;  // m: half the gap between the impact surfaces on the cavities' axis (>= 0)
     double kinetic = 0, internal = 0;  // J per metre of depth
     double max_temperature = 0, hot_spot = 0;  // K
+    double max_eta = 0;  // the largest particle compression 1 - det F
     S::vector hot_spot_centre = S::vector::Zero();
     cavity_state cavity[2];
     [[nodiscard]] double wall_relative_velocity() const {
@@ -151,6 +153,8 @@ public:
         r.internal = gimlet::diagnostics::internal_energy(sol);
         const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius);
         r.max_temperature = hs.max_temperature;
+        for (const auto& f : sol.particles().template column<gimlet::fields::deformation_gradient>())
+            r.max_eta = std::max(r.max_eta, 1.0 - double(f.determinant()));
         r.hot_spot = hs.temperature;
         r.hot_spot_centre = hs.centre;
         if (s_.radius > 0) {
@@ -204,6 +208,7 @@ struct summary {
     double max_wall_relative_velocity = 0;  // m/s
     double max_upstream_speed = 0;          // m/s: the paper's jet speed, its largest
     double max_hot_spot = 0, max_temperature = 0;  // K
+    double max_eta = 0;  // the largest particle compression 1 - det F at any sample
     double t_hot_spot = -1;
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
     // part of the heating reverses on release); what stays is plastic work and shock entropy.
@@ -235,6 +240,7 @@ struct summary {
         f("max_upstream_speed", max_upstream_speed);
         f("max_hot_spot", max_hot_spot);
         f("max_temperature", max_temperature);
+        f("max_eta", max_eta);
         f("t_hot_spot", t_hot_spot);
         f("final_hot_spot", final_hot_spot);
         f("settled_hot_spot", settled_hot_spot);
@@ -273,6 +279,7 @@ struct summary {
         }
         final_hot_spot = r.hot_spot;
         max_temperature = std::max(max_temperature, r.max_temperature);
+        max_eta = std::max(max_eta, r.max_eta);
         for (int b = 0; b < 2 && s.radius > 0; ++b) {
             const auto& c = r.cavity[b];
             // The mode is read off an open chord: a sample where the axis shows no void (a

@@ -5,12 +5,14 @@
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
-//                   [--hot-spot-radius 0.5] [--threads 0] [--quiet] [--no-figures]
+//                   [--hot-spot-radius 0.5] [--volumetric-average off] [--threads 0]
+//                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
 //
 // Writes OUTPUT/series.csv (one row per sample), OUTPUT/summary.csv (one row: D_max, secondary
-// impact, maximum relative wall velocity, hot spot, collapse mode), particle snapshots for
+// impact, maximum relative wall velocity, hot spot, largest particle compression, collapse
+// mode), particle snapshots for
 // ParaView (OUTPUT/snapshots/particles.pvd and particles_NNNNNN.vtp) and for the figures
 // (OUTPUT/snapshots/map_NNNN.csv) and, where python3 with matplotlib is available, PNG maps of
 // pressure and temperature and a plot of the series. docs/reproduction.md defines each quantity.
@@ -43,7 +45,7 @@ namespace {
 using namespace cavity_collapse;
 
 void write_header(std::ostream& os) {
-    os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,"
+    os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,max_eta,"
           "hotspot_temperature_K,hotspot_x_mm,hotspot_y_mm,wall_relative_velocity_m_s,"
           "lower_cavity_open,lower_axial_chord_mm,lower_lateral_chord_mm,lower_closing_speed_m_s,"
           "lower_upstream_wall_speed_m_s,upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,"
@@ -52,7 +54,7 @@ void write_header(std::ostream& os) {
 
 void write_row(std::ostream& os, const sample& r, const settings& s) {
     os << r.time * 1e6 << ',' << (r.time - contact_time(s)) * 1e6 << ',' << r.D * 1e3 << ',' << r.kinetic << ','
-       << r.internal << ',' << r.max_temperature << ',' << r.hot_spot << ',' << r.hot_spot_centre[0] * 1e3 << ','
+       << r.internal << ',' << r.max_temperature << ',' << r.max_eta << ',' << r.hot_spot << ',' << r.hot_spot_centre[0] * 1e3 << ','
        << r.hot_spot_centre[1] * 1e3 << ',' << r.wall_relative_velocity();
     for (const auto& c : r.cavity)
         os << ',' << int(c.open) << ',' << c.axial_chord * 1e3 << ',' << c.lateral_chord * 1e3 << ','
@@ -143,13 +145,15 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
     return {{"velocity_m_s", s.velocity},        {"radius_m", s.radius},
             {"cell_m", s.cell},                  {"contact", double(int(s.contact))},
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
-            {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end}};
+            {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
+            {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}};
 }
 
 template <class Contact>
 int run(const settings& s, const run_files& io) {
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
+    opt.volumetric_average = s.volumetric_average;
     gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, Contact{});
     const auto& out = io.out;
     monitor mon(s);
@@ -278,18 +282,18 @@ int run(const settings& s, const run_files& io) {
     std::ofstream su(out / "summary.csv");
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
-          "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,lower_closure_us,lower_asymmetric,"
+          "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,status\n";
+          "upper_aspect_at_collapse,volumetric_average,status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
        << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
        << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_upstream_speed << ',' << sum.max_hot_spot << ','
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
-       << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
+       << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
-       << sum.aspect[1] << ',' << status << '\n';
+       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
@@ -300,6 +304,7 @@ int run(const settings& s, const run_files& io) {
                 "%.1f K (hottest particle %.1f K)\n",
                 sum.max_wall_relative_velocity, sum.max_hot_spot, sum.settled_hot_spot, sum.final_hot_spot,
                 sum.max_temperature);
+    std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
     if (s.radius > 0)
         for (int b = 0; b < 2; ++b)
             std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",
@@ -322,7 +327,7 @@ int main(int argc, char** argv) try {
     example::cli args(static_cast<int>(rest.size()), rest.data(),
                       "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
                       "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--threads N] [--quiet] [--no-figures] [--output DIR] "
+                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--threads N] [--quiet] [--no-figures] [--output DIR] "
                       "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
     settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
@@ -335,6 +340,7 @@ int main(int argc, char** argv) try {
     s.sample_every = 1e-6 * args.real("sample-every-us", 0.1, 0.0, 100.0);
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
+    s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     {
         const std::string list = args.path("snapshots-after-contact-us");
         std::stringstream ss(list);

@@ -17,7 +17,9 @@ namespace impact_1d {
 
 using S = gimlet::space<2>;
 using material = gimlet::materials::hmx_material<>;
-using solver = gimlet::solver<S, gimlet::shape::ugimp, material>;
+template <class M = material, class C = gimlet::contact::single_field>
+using solver_for = gimlet::solver<S, gimlet::shape::ugimp, M, C>;
+using solver = solver_for<>;
 
 struct settings {
     double velocity = 300.0;   // m/s, each slab
@@ -25,6 +27,7 @@ struct settings {
     double length = 20e-3;     // m, each slab
     double end_time = 3e-6;    // s
     gimlet::update_scheme scheme = gimlet::update_scheme::usf;
+    bool volumetric_average = false;  // solver_options::volumetric_average
     int threads = 0;
 };
 
@@ -33,6 +36,9 @@ struct settings {
 struct hugoniot_state {
     double sigma_yy = 0;        // Pa, compression positive, behind the (plastic) shock
     double pressure = 0;        // Pa
+    double eta = 0;             // 1 - V/V0 behind the (plastic) shock
+    double energy = 0;          // J/kg, specific internal energy behind it (shear energy included)
+    double eta_hel = 0;         // 1 - V/V0 at the Hugoniot elastic limit
     double shock_speed = 0;     // m/s, relative to the material ahead of the (plastic) shock
     bool two_wave = false;      // an elastic precursor runs ahead
     double precursor_sigma = 0; // Pa, the Hugoniot elastic limit state (two-wave only)
@@ -87,9 +93,12 @@ inline hugoniot_state rankine_hugoniot(const material& m, double v) {
     const double u_pre = std::sqrt(sigma_hel / (rho0 * eta_hel));  // precursor speed
     const double v_hel = u_pre * eta_hel;
     const double u_single = solve_shock(eos, g, y, 0, 0, 0, v);
+    out.eta_hel = eta_hel;
     if (v <= v_hel || u_single >= u_pre) {
         out.shock_speed = u_single;
         out.sigma_yy = rho0 * u_single * v;
+        out.eta = v / u_single;
+        out.energy = 0.5 * out.sigma_yy * out.eta / rho0;
     } else {
         out.two_wave = true;
         out.precursor_sigma = sigma_hel;
@@ -100,6 +109,8 @@ inline hugoniot_state rankine_hugoniot(const material& m, double v) {
         const double u_l = solve_shock(eos, g, y, sigma_hel, eta_hel, e_hel, v - v_hel);
         out.sigma_yy = sigma_hel + rho0 * u_l * (v - v_hel);
         out.shock_speed = u_l * (1.0 - eta_hel);
+        out.eta = eta_hel + (v - v_hel) / u_l;
+        out.energy = e_hel + 0.5 * (out.sigma_yy + sigma_hel) * (out.eta - eta_hel) / rho0;
     }
     // P behind the shock: the yielded deviator is 2Y/3 (standard form; the viscosity is zero
     // in a steady plateau).
@@ -107,9 +118,27 @@ inline hugoniot_state rankine_hugoniot(const material& m, double v) {
     return out;
 }
 
+// The temperature of a Rankine-Hugoniot state on the EOS's own thermodynamics: T(V, e_th)
+// from the reference isentrope (thermal::isentrope_temperature), with e_th the energy less the
+// stored shear energy s:s/(4 G rho) = Y^2/(6 G rho) of the yielded deviator.
+inline double hugoniot_temperature(const hugoniot_state& rh, const gimlet::materials::hmx_constants& c = {}) {
+    const double g = gimlet::elastic_moduli::from_young_poisson(c.young, c.poisson).shear;
+    const double rho = c.density / (1.0 - rh.eta);
+    const gimlet::thermal::isentrope_temperature th(c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
+                                                    c.temperature);
+    return th.temperature(1.0 - rh.eta, rh.energy - c.yield_stress * c.yield_stress / (6.0 * g * rho));
+}
+
+// The plastic work of uniaxial strain from the elastic limit to eta, as kelvin of heating:
+// 2 Y (eta - eta_HEL) / (3 rho0 c_v) (perfect plasticity, small strains).
+inline double uniaxial_plastic_heat(const hugoniot_state& rh, const gimlet::materials::hmx_constants& c = {}) {
+    return 2.0 * c.yield_stress * std::max(0.0, rh.eta - rh.eta_hel) / (3.0 * c.density * c.specific_heat);
+}
+
 // ---- the scene and the measurements --------------------------------------------------------
 
-inline solver make_solver(const settings& s) {
+template <class M = material, class C = gimlet::contact::single_field>
+solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
     gimlet::require(std::isfinite(s.velocity) && s.velocity > 0 && s.velocity <= 1000, "velocity (m/s)", s.velocity,
                     "(0, 1000]");
     gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 1e-3, "cell size (m)", s.cell, "(0, 1e-3]");
@@ -119,22 +148,51 @@ inline solver make_solver(const settings& s) {
     gs.upper = S::vector(width, s.length + 10 * s.cell);
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
-    gimlet::scene::scene<S, material> scene(gs);
-    const auto hmx = gimlet::materials::make_hmx();
-    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, s.length)), hmx,
+    gimlet::scene::scene<S, M> scene(gs);
+    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, s.length)), mat,
                    S::vector(0.0, -s.velocity), 2, "upper slab");
-    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, -s.length), S::vector(width, 0.0)), hmx,
+    scene.add_body(gimlet::scene::box<S>(S::vector(0.0, -s.length), S::vector(width, 0.0)), mat,
                    S::vector(0.0, s.velocity), 2, "lower slab");
     gimlet::solver_options<S> opt;
     opt.scheme = s.scheme;
     opt.threads = s.threads;
-    return solver(scene, opt);
+    opt.volumetric_average = s.volumetric_average;
+    return solver_for<M, C>(scene, opt);
+}
+
+// The leading edge of a wave running towards larger coordinates: the largest coordinate in
+// [lo, hi] where the profile reaches `level`, interpolated linearly to the next larger coordinate
+// (particles at one coordinate are averaged); lo if none reaches it.
+inline double leading_crossing(const std::vector<std::pair<double, double>>& prof, double level, double lo, double hi) {
+    struct row {
+        double x, sum;
+        int count;
+    };
+    std::vector<row> rows;  // increasing coordinate
+    for (const auto& [x, v] : prof) {
+        if (x < lo || x > hi) continue;
+        if (!rows.empty() && x - rows.back().x <= 1e-12 * (1.0 + std::abs(x))) rows.back().sum += v, ++rows.back().count;
+        else rows.push_back({x, v, 1});
+    }
+    auto mean = [&](std::size_t k) { return rows[k].sum / rows[k].count; };
+    for (std::size_t k = rows.size(); k-- > 0;) {
+        if (mean(k) < level) continue;
+        if (k + 1 == rows.size()) return rows[k].x;
+        return rows[k].x + (rows[k + 1].x - rows[k].x) * (mean(k) - level) / (mean(k) - mean(k + 1));
+    }
+    return lo;
 }
 
 struct result {
     hugoniot_state rh;              // what the jump conditions predict
+    double rh_temperature = 0;      // K, hugoniot_temperature(rh)
+    double rh_plastic_heat = 0;     // K, uniaxial_plastic_heat(rh)
     double plateau_sigma_yy = 0;    // Pa, compression positive
     double plateau_pressure = 0;    // Pa
+    double plateau_eta = 0;         // mean 1 - J over the plateau
+    double plateau_plastic_heat = 0;// K, mean plastic work / c_v over the plateau
+    double front_peak_eta = 0;      // largest 1 - J between the plateau and the front
+    double rise_cells = 0;          // 10-90 % rise of sigma_yy at the front, in cells
     double shock_speed = 0;         // m/s, relative to the material ahead of it
     double energy_error = 0;        // (E - E0) / E0, E = kinetic + internal (incl. heat)
     double max_temperature = 0;     // K
@@ -149,10 +207,13 @@ struct result {
 // sigma_yy first exceeds the mid-point between the precursor (0 for a single wave) and the
 // predicted plateau; its speed is a least-squares fit over the second half of the run, plus
 // the velocity of the material ahead of it.
-inline result run(const settings& s) {
-    solver sol = make_solver(s);
+template <class M = material, class C = gimlet::contact::single_field>
+result run(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
+    auto sol = make_solver<M, C>(s, mat);
     result r;
-    r.rh = rankine_hugoniot(sol.materials()[0], s.velocity);
+    r.rh = rankine_hugoniot(gimlet::materials::make_hmx(), s.velocity);
+    r.rh_temperature = hugoniot_temperature(r.rh);
+    r.rh_plastic_heat = uniaxial_plastic_heat(r.rh);
     const double e0 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
     const double threshold = 0.5 * (r.rh.precursor_sigma + r.rh.sigma_yy);
     auto sigma_yy = [](const auto& p) { return -p.template get<gimlet::fields::stress>()(1, 1); };
@@ -170,24 +231,42 @@ inline result run(const settings& s) {
     const auto& ps = sol.particles();
     const double front = r.fronts.back();
     const double lo = 10 * s.cell, hi = 0.5 * front;
+    using store = typename solver_for<M, C>::store_type;
     double n = 0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
         const auto p = ps[i];
-        const double y = p.get<gimlet::fields::position>()[1];
-        const double j = p.get<gimlet::fields::deformation_gradient>().determinant();
+        const double y = p.template get<gimlet::fields::position>()[1];
+        const double j = p.template get<gimlet::fields::deformation_gradient>().determinant();
         r.min_det_f = std::min(r.min_det_f, j);
-        r.all_finite = r.all_finite && p.get<gimlet::fields::stress>().allFinite() && std::isfinite(j);
-        r.max_temperature = std::max(r.max_temperature, double(p.get<gimlet::fields::temperature>()));
+        r.all_finite = r.all_finite && p.template get<gimlet::fields::stress>().allFinite() && std::isfinite(j);
+        if constexpr (store::template has<gimlet::fields::temperature>)
+            r.max_temperature = std::max(r.max_temperature, double(p.template get<gimlet::fields::temperature>()));
+        if (upper(p) && y > hi) r.front_peak_eta = std::max(r.front_peak_eta, 1.0 - j);
         if (upper(p) && y >= lo && y <= hi) {
             r.plateau_sigma_yy += sigma_yy(p);
             r.plateau_pressure += gimlet::mean_pressure(p);
-            r.plateau_temperature += p.get<gimlet::fields::temperature>();
+            r.plateau_eta += 1.0 - j;
+            if constexpr (store::template has<gimlet::fields::temperature>)
+                r.plateau_temperature += p.template get<gimlet::fields::temperature>();
+            if constexpr (store::template has<gimlet::fields::plastic_work>)
+                r.plateau_plastic_heat += p.template get<gimlet::fields::plastic_work>() /
+                                          gimlet::materials::hmx_constants{}.specific_heat;
             n += 1;
         }
     }
     r.plateau_sigma_yy /= n;
     r.plateau_pressure /= n;
+    r.plateau_eta /= n;
     r.plateau_temperature /= n;
+    r.plateau_plastic_heat /= n;
+    // The front's 10-90 % rise, from the level ahead of it (the precursor's, or 0) to the plateau.
+    {
+        const auto prof = gimlet::diagnostics::profile(sol, 1, sigma_yy, upper);
+        const double ahead = r.rh.precursor_sigma, jump = r.plateau_sigma_yy - ahead;
+        const double y10 = leading_crossing(prof, ahead + 0.1 * jump, hi, s.length);
+        const double y90 = leading_crossing(prof, ahead + 0.9 * jump, hi, s.length);
+        r.rise_cells = (y10 - y90) / s.cell;
+    }
     // Least-squares slope of front(t): the lab-frame speed of the plastic front.
     double st = 0, sf = 0, stt = 0, stf = 0;
     const double m = double(r.times.size());

@@ -9,42 +9,74 @@
 
 namespace {
 
-void check_impact(double v) {
+impact_1d::result check_impact(double v) {
     impact_1d::settings s;  // 0.1 mm cells, 20 mm slabs, 3 us, USF
     s.velocity = v;
     const auto r = impact_1d::run(s);
     std::printf("impact_1d v = %.0f m/s: sigma_yy %.4e Pa (RH %.4e, %+.2f %%), shock speed %.1f m/s "
-                "(RH %.1f, c0 + s v %.1f, %s), energy error %.2e, plateau T %.1f K\n",
+                "(RH %.1f, c0 + s v %.1f, %s), energy error %.2e, plateau T - T0 %.2f K (RH %.2f K), "
+                "plastic work %.2f K (uniaxial %.2f K), front rise %.2f cells, peak eta %+.1f %% over the plateau\n",
                 v, r.plateau_sigma_yy, r.rh.sigma_yy, 100 * (r.plateau_sigma_yy / r.rh.sigma_yy - 1), r.shock_speed,
                 r.rh.shock_speed, 2740 + 2.6 * v, r.rh.two_wave ? "two-wave" : "single wave", r.energy_error,
-                r.plateau_temperature);
-    // The bounds: plateau within 3 % of Rankine-Hugoniot; total energy (kinetic +
-    // internal, heat and viscous work included) within 1 %.
+                r.plateau_temperature - 300.0, r.rh_temperature - 300.0, r.plateau_plastic_heat, r.rh_plastic_heat,
+                r.rise_cells, 100 * (r.front_peak_eta / r.plateau_eta - 1));
+    // Plateau within 3 % of Rankine-Hugoniot.
     CHECK(std::abs(r.plateau_sigma_yy / r.rh.sigma_yy - 1) < 0.03);
-    CHECK(std::abs(r.energy_error) < 0.01);
     CHECK(r.all_finite);
     CHECK(r.min_det_f > 0);
-    // The material did heat up (shock and plastic work) and stayed far from anything absurd.
-    CHECK(r.plateau_temperature > 300.0);
+    // The temperature rise within 3 % of the Rankine-Hugoniot state's on the EOS's own
+    // thermodynamics (the isentrope temperature, the shear energy excluded from heat).
+    CHECK(std::abs((r.plateau_temperature - 300.0) / (r.rh_temperature - 300.0) - 1) < 0.03);
     CHECK(r.max_temperature < 1000.0);
     if (!r.rh.two_wave) {
         // Single wave: U_s within 3 % of c0 + s v (the bound) and of the elastic-plastic
-        // Rankine-Hugoniot speed.
+        // Rankine-Hugoniot speed; the front rises (10-90 % of sigma_yy) within 4 cells.
         CHECK(std::abs(r.shock_speed / (2740.0 + 2.6 * v) - 1) < 0.03);
         CHECK(std::abs(r.shock_speed / r.rh.shock_speed - 1) < 0.03);
+        CHECK(r.rise_cells > 0.5);  // a shock spread over the grid, not a measurement artefact
+        CHECK(r.rise_cells < 4.0);
     }
+    return r;
 }
 
 }  // namespace
 
+// Total energy (kinetic + internal, heat and viscous work included) within 1 % at 150 and
+// 300 m/s. At 500 and 700 m/s it is not asserted: the shock rings at the default viscosity and
+// USF gains 1.1 and 1.7 % (docs/equations.md, viscosity::bulk; the particle-scale mode control
+// that should close it is open work).
 TEST_CASE("impact_1d at 300 m/s: single shock on the Rankine-Hugoniot state", "[examples][verification]") {
-    check_impact(300.0);
+    const auto r = check_impact(300.0);
+    CHECK(std::abs(r.energy_error) < 0.01);
+}
+
+TEST_CASE("impact_1d at 500 and 700 m/s: the shocked state's temperature", "[examples][verification]") {
+    check_impact(500.0);
+    check_impact(700.0);
 }
 
 TEST_CASE("impact_1d at 150 m/s: two-wave structure, plateau on the Rankine-Hugoniot state", "[examples][verification]") {
     const auto rh = impact_1d::rankine_hugoniot(gimlet::materials::make_hmx(), 150.0);
     CHECK(rh.two_wave);  // the paper's material has an elastic precursor below ~210 m/s
-    check_impact(150.0);
+    const auto r = check_impact(150.0);
+    CHECK(std::abs(r.energy_error) < 0.01);
+}
+
+TEST_CASE("Rankine-Hugoniot helper: the oracle values of the shock-thermodynamics work", "[examples]") {
+    // The elastic-plastic jump conditions on the same EOS and strength: sigma_yy, the temperature
+    // rise T(V, e_th) on the reference isentrope (e_th = e - Y^2 / (6 G rho)), and the uniaxial
+    // plastic work 2 Y (eta - eta_HEL) / (3 rho0 c_v) at 300, 500 and 700 m/s, against values
+    // computed independently from the EOS and quoted to 0.1 K and 0.01 K (so within those).
+    const auto hmx = gimlet::materials::make_hmx();
+    const double sigma[] = {2.034e9, 3.863e9, 6.087e9}, rise[] = {37.0, 71.9, 122.1}, work[] = {2.07, 3.16, 4.00};
+    int k = 0;
+    for (const double v : {300.0, 500.0, 700.0}) {
+        const auto rh = impact_1d::rankine_hugoniot(hmx, v);
+        CHECK(rh.sigma_yy == Approx(sigma[k]).epsilon(5e-4));
+        CHECK(impact_1d::hugoniot_temperature(rh) - 300.0 == Approx(rise[k]).margin(0.1));
+        CHECK(impact_1d::uniaxial_plastic_heat(rh) == Approx(work[k]).margin(0.01));
+        ++k;
+    }
 }
 
 TEST_CASE("Rankine-Hugoniot helper: hydrodynamic limit", "[examples]") {

@@ -65,6 +65,11 @@ struct solver_options {
     /// deterministic (a stable sort on the cell) and keyed on the step count, so a run resumed
     /// with solver::resume_at sorts at the same steps as the uninterrupted run.
     int sort_interval = 0;
+    /// Spread each particle's volume change over its cell (a volumetric F-bar in rate form,
+    /// after Coombs et al. 2018): the volumetric strain rate tr L of every particle is replaced by
+    /// the volume-weighted mean over the particles of its body in its grid cell, its deviatoric
+    /// part kept. Two bodies are never averaged together. Off by default (see docs/equations.md).
+    bool volumetric_average = false;
 
     void validate() const {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
@@ -337,6 +342,7 @@ private:
         dt_ = dt;
         const bool usf = options_.scheme == update_scheme::usf;
         bucket_by_slab();
+        if (options_.volumetric_average) average_mean_stress();
         grid_.clear();
         // USF with contact also maps the forces of the current stress: they decide where contact
         // acts in this step (contact_pass::trial).
@@ -356,8 +362,10 @@ private:
                 std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
             }
             lap(timings_.contact);
+            if (options_.volumetric_average) average_volumetric_rates(grid_.velocity);
             update_material_points(dt, grid_.velocity);
             lap(timings_.material_update);
+            if (options_.volumetric_average) average_mean_stress();
             map_forces();
             lap(timings_.particle_to_grid);
         }
@@ -382,6 +390,7 @@ private:
         } else {
             lap(timings_.grid_to_particle);
         }
+        if (!usf && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
         finish_step(dt, !usf);
         lap(timings_.material_update);
     }
@@ -472,7 +481,7 @@ private:
             matrix vs = matrix::Zero();
             vector mb = vector::Zero();
             if constexpr (Forces) {
-                vs = current_volume(particles_[i]) * particles_.template column<fields::stress>()[i];
+                vs = force_stress(i);
                 mb = mp * b;
                 if constexpr (store_type::template has<fields::external_acceleration>)
                     mb += mp * particles_.template column<fields::external_acceleration>()[i];
@@ -498,11 +507,10 @@ private:
     // stress update.
     void map_forces() {
         const auto& m = particles_.template column<fields::mass>();
-        const auto& sig = particles_.template column<fields::stress>();
         const vector b = options_.body_force.template cast<real>();
         const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
         for_each_particle_by_slab([&](std::size_t i) {
-            const matrix vs = current_volume(particles_[i]) * sig[i];
+            const matrix vs = force_stress(i);
             vector mb = m[i] * b;
             if constexpr (store_type::template has<fields::external_acceleration>)
                 mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
@@ -567,7 +575,6 @@ private:
         auto& x = particles_.template column<fields::position>();
         auto& v = particles_.template column<fields::velocity>();
         const auto& m = particles_.template column<fields::mass>();
-        const auto& sig = particles_.template column<fields::stress>();
         const real alpha = real(options_.pic_fraction);
         const vector b = options_.body_force.template cast<real>();
         auto update = [&](std::size_t i) {
@@ -584,7 +591,7 @@ private:
             });
             if (light) {
                 // Rare: only particles on a light node pay for this pass.
-                const matrix vs = current_volume(particles_[i]) * sig[i];
+                const matrix vs = force_stress(i);
                 vector mb = m[i] * b;
                 if constexpr (store_type::template has<fields::external_acceleration>)
                     mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
@@ -638,7 +645,67 @@ private:
         matrix L = matrix::Zero();
         const std::size_t base = field_base(i);
         stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[base + node] * g.transpose(); });
+        if (options_.volumetric_average) {
+            const std::size_t c = cell_key(i);
+            L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
+        }
         gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
+    }
+
+    // ---- volumetric averaging (solver_options::volumetric_average) ------------------------
+
+    // The particle's body and grid cell, as one index: the first node of its stencil (a cell for
+    // a given shape) in its body's block of nodes.
+    [[nodiscard]] std::size_t cell_key(std::size_t i) const {
+        std::size_t flat = 0;
+        for (int d = 0; d < dim; ++d) flat += std::size_t(stencils_[i].offset[d][0]);
+        return std::size_t(particles_.template column<fields::body>()[i]) * grid_.size() + flat;
+    }
+
+    // V_p sigma_p as the nodal forces take it: with volumetric averaging, the particle's in-plane
+    // mean stress tr(sigma_p)/dim replaced by its cell's volume-weighted mean (B-bar: the power
+    // these forces do on the grid velocities is then exactly the stress power of the averaged
+    // rates, sum_p V_p sigma_p : L-bar_p, so averaging creates no energy).
+    [[nodiscard]] matrix force_stress(std::size_t i) const {
+        const matrix& sig = particles_.template column<fields::stress>()[i];
+        const real v = current_volume(particles_[i]);
+        if (!options_.volumetric_average) return v * sig;
+        const std::size_t c = cell_key(i);
+        matrix out = sig;
+        out.diagonal().array() += cell_stress_[c] / cell_stress_volume_[c] - sig.trace() / real(dim);
+        return v * out;
+    }
+
+    // Per body and cell, the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
+    void average_mean_stress() {
+        const std::size_t n = materials_.size() * grid_.size();
+        cell_stress_.assign(n, real(0));
+        cell_stress_volume_.assign(n, real(0));
+        const auto& sig = particles_.template column<fields::stress>();
+        for_each_particle_by_slab([&](std::size_t i) {
+            const real v = current_volume(particles_[i]);
+            const std::size_t c = cell_key(i);
+            cell_stress_[c] += v * sig[i].trace() / real(dim);
+            cell_stress_volume_[c] += v;
+        });
+    }
+
+    // Per body and cell, the sums of V_p tr L_p and of V_p over its particles, with L_p from the
+    // velocities vg. A particle's cell lies in its own slab, so the slab colouring keeps the sums
+    // free of races and in a fixed order.
+    void average_volumetric_rates(const std::vector<vector>& vg) {
+        const std::size_t n = materials_.size() * grid_.size();
+        cell_rate_.assign(n, real(0));
+        cell_volume_.assign(n, real(0));
+        for_each_particle_by_slab([&](std::size_t i) {
+            real rate = 0;
+            const std::size_t base = field_base(i);
+            stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[base + node].dot(g); });
+            const real v = current_volume(particles_[i]);
+            const std::size_t c = cell_key(i);
+            cell_rate_[c] += v * rate;
+            cell_volume_[c] += v;
+        });
     }
 
     // The step's last particle pass: the constitutive update from the grid velocities (MUSL,
@@ -914,6 +981,9 @@ private:
     step_timings timings_;
     real mass_cutoff_ = 0;
     std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
+    // Volumetric averaging, per body and cell: sums of V tr(L) and V, and of V tr(sigma)/dim
+    // and V at the forces' time.
+    std::vector<real> cell_rate_, cell_volume_, cell_stress_, cell_stress_volume_;
     bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
     real dt_ = 0;
