@@ -284,7 +284,9 @@ int run(const settings& s, const run_files& io) {
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average,status\n";
+          "upper_aspect_at_collapse,volumetric_average";
+    for (const char* name : gimlet::health_events::names) su << ",events_" << name;
+    su << ",status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
@@ -293,7 +295,9 @@ int run(const settings& s, const run_files& io) {
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
-       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << status << '\n';
+       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off");
+    for (const auto n : sol.health().count) su << ',' << n;
+    su << ',' << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
@@ -305,6 +309,12 @@ int run(const settings& s, const run_files& io) {
                 sum.max_wall_relative_velocity, sum.max_hot_spot, sum.settled_hot_spot, sum.final_hot_spot,
                 sum.max_temperature);
     std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
+    // The silent numerical guards that acted (solver::health): counts, and the first of each.
+    std::printf("  health events: %llu\n", static_cast<unsigned long long>(sol.health().total()));
+    for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
+        if (sol.health().count[k] > 0)
+            std::printf("    %s: %llu, first %s\n", gimlet::health_events::names[k],
+                        static_cast<unsigned long long>(sol.health().count[k]), sol.health().first[k].c_str());
     if (s.radius > 0)
         for (int b = 0; b < 2; ++b)
             std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",

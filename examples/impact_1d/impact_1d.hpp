@@ -193,6 +193,7 @@ struct result {
     double plateau_plastic_heat = 0;// K, mean plastic work / c_v over the plateau
     double front_peak_eta = 0;      // largest 1 - J between the plateau and the front
     double rise_cells = 0;          // 10-90 % rise of sigma_yy at the front, in cells
+    gimlet::health_events health;   // the silent guards that acted (solver::health)
     double shock_speed = 0;         // m/s, relative to the material ahead of it
     double energy_error = 0;        // (E - E0) / E0, E = kinetic + internal (incl. heat)
     double max_temperature = 0;     // K
@@ -276,6 +277,7 @@ result run(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
     const double lab = (m * stf - st * sf) / (m * stt - st * st);
     // The material ahead of the plastic front moves at -(v - v_precursor) towards it.
     r.shock_speed = lab + (s.velocity - r.rh.precursor_velocity);
+    r.health = sol.health();
     const double e1 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
     r.energy_error = (e1 - e0) / e0;
     return r;

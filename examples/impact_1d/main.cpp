@@ -18,6 +18,7 @@
 #include "common/cli.hpp"
 #include "impact_1d/impact_1d.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -48,7 +49,9 @@ int main(int argc, char** argv) try {
     csv << "velocity_m_s,plateau_pressure_Pa,plateau_stress_yy_Pa,shock_speed_m_s,energy_error_rel,"
            "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
            "plateau_temperature_K,max_temperature_K,cell_mm,scheme,rh_temperature_K,plateau_eta,rh_eta,"
-           "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average\n";
+           "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta";
+    for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
+    csv << '\n';
     csv.precision(10);
     csv << s.velocity << ',' << r.plateau_pressure << ',' << r.plateau_sigma_yy << ',' << r.shock_speed << ','
         << r.energy_error << ',' << r.rh.pressure << ',' << r.rh.sigma_yy << ',' << r.rh.shock_speed << ','
@@ -56,7 +59,9 @@ int main(int argc, char** argv) try {
         << r.max_temperature << ',' << s.cell * 1e3 << ',' << scheme << ',' << r.rh_temperature << ','
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
-        << (s.volumetric_average ? "on" : "off") << '\n';
+        << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f;
+    for (const auto n : r.health.count) csv << ',' << n;
+    csv << '\n';
 
     std::printf("impact_1d: HMX slabs at +-%.0f m/s, cell %.3f mm, %s, to %.2f us\n", s.velocity, s.cell * 1e3,
                 scheme.c_str(), s.end_time * 1e6);
@@ -78,6 +83,11 @@ int main(int argc, char** argv) try {
     std::printf("  front: 10-90 %% rise %.2f cells, peak eta %.4f (%+.2f %% over the plateau)\n", r.rise_cells,
                 r.front_peak_eta, 100 * (r.front_peak_eta / r.plateau_eta - 1));
     std::printf("  total energy error %.2e, max temperature %.1f K\n", r.energy_error, r.max_temperature);
+    std::printf("  health events: %llu\n", static_cast<unsigned long long>(r.health.total()));
+    for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
+        if (r.health.count[k] > 0)
+            std::printf("    %s: %llu, first %s\n", gimlet::health_events::names[k],
+                        static_cast<unsigned long long>(r.health.count[k]), r.health.first[k].c_str());
     std::printf("  summary: %s\n", (out / "summary.csv").string().c_str());
     return 0;
 } catch (const std::exception& e) {

@@ -56,14 +56,25 @@ template <Material M, class P>
 }
 
 /// Longitudinal wave speed sqrt((K + 4G/3) / rho) from the EOS tangent bulk modulus and the
-/// strength's shear modulus (PHYSICS.md section 1, step 6).
+/// strength's shear modulus (PHYSICS.md section 1, step 6). `guards` gains the eos::guard bits of
+/// the silent guards that acted: the EOS's own (if its bulk_modulus reports them) and
+/// eos::guard::no_wave_speed where (K + 4G/3)/rho is not positive (the speed is then 0).
 template <Material M, class P>
-[[nodiscard]] auto longitudinal_wave_speed(const P& p, const M& mat) {
+[[nodiscard]] auto longitudinal_wave_speed(const P& p, const M& mat, unsigned& guards) {
     using real = typename P::space_type::real;
     const point_state<real> st = point_state_of(p, mat);
-    const real k = mat.eos.bulk_modulus(st, p);
+    real k;
+    if constexpr (requires { mat.eos.bulk_modulus(st, p, guards); }) k = mat.eos.bulk_modulus(st, p, guards);
+    else k = mat.eos.bulk_modulus(st, p);
     const real g = mat.strength.shear_modulus(st, p);
-    return std::sqrt(std::max(real(0), (k + real(4) / real(3) * g) / st.density));
+    const real c2 = (k + real(4) / real(3) * g) / st.density;
+    if (!(c2 > 0)) guards |= eos::guard::no_wave_speed;
+    return std::sqrt(std::max(real(0), c2));
+}
+template <Material M, class P>
+[[nodiscard]] auto longitudinal_wave_speed(const P& p, const M& mat) {
+    unsigned ignored = 0;
+    return longitudinal_wave_speed(p, mat, ignored);
 }
 
 /// Advance particle p over dt given its velocity gradient L:

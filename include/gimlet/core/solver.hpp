@@ -82,6 +82,24 @@ struct solver_options {
     }
 };
 
+/// The silent numerical guards that acted on particles in a run (eos::guard): how often each
+/// kind did, and the first particle it met (its body, place and step). A guard that stops the
+/// run throws a numerical_error instead and is not counted here. Counted when the guarded value
+/// enters a step (the wave speeds of a time step the solver chose).
+struct health_events {
+    static constexpr std::size_t kinds = eos::guard::kinds;
+    /// Column names, in eos::guard bit order.
+    static constexpr std::array<const char*, kinds> names = {"eos_compression_capped", "eos_negative_modulus",
+                                                             "no_wave_speed"};
+    std::array<std::uint64_t, kinds> count{};
+    std::array<std::string, kinds> first;  ///< "step N (t = ...): particle i (body b) at (x, y) m: ..."; empty if none
+    [[nodiscard]] std::uint64_t total() const noexcept {
+        std::uint64_t n = 0;
+        for (auto c : count) n += c;
+        return n;
+    }
+};
+
 /// Where the wall-clock time of a solver's steps went (s, summed over its steps): see
 /// solver::timings(). Fused loops are counted where they end up.
 struct step_timings {
@@ -183,14 +201,24 @@ public:
     [[nodiscard]] real stable_time_step() const {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         real fastest = 0;
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(max : fastest) num_threads(threads()) if (n >= parallel_threshold))
+        // The guards met on the way (health_events), counted once the step is taken.
+        std::uint64_t n0 = 0, n1 = 0, n2 = 0;
+        std::ptrdiff_t f0 = n, f1 = n, f2 = n;
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
-            real c = wave_speed(p);
+            unsigned guards = 0;
+            real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
+            if (guards != 0) {
+                if (guards & eos::guard::compression_capped) ++n0, f0 = std::min(f0, i);
+                if (guards & eos::guard::negative_modulus) ++n1, f1 = std::min(f1, i);
+                if (guards & eos::guard::no_wave_speed) ++n2, f2 = std::min(f2, i);
+            }
             if constexpr (M::viscosity_type::enabled)
                 c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
             fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
         }
+        pending_health_ = {steps_, true, {n0, n1, n2}, {f0, f1, f2}};
         real dt = real(options_.max_time_step);
         if (fastest > 0) dt = std::min(dt, real(options_.cfl) * grid_.cell() / fastest);
         return dt;
@@ -224,6 +252,8 @@ public:
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
     /// Wall-clock time per phase of the steps so far (see docs/performance.md).
     [[nodiscard]] const step_timings& timings() const noexcept { return timings_; }
+    /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
+    [[nodiscard]] const health_events& health() const noexcept { return health_; }
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
@@ -331,6 +361,7 @@ private:
             mark = now;
         };
         check_pending();
+        count_health();
         lap(timings_.material_update);  // where the checks are done in every other step
         // The weights are recomputed from the positions every step, even though the previous
         // step's last pass could have computed them: a caller may change positions through a
@@ -906,6 +937,23 @@ private:
         grid_.apply_walls(grid_.velocity);
     }
 
+    // The guards of the time step this step takes (stable_time_step), into health_.
+    void count_health() {
+        if (!pending_health_.valid || pending_health_.step != steps_) return;
+        pending_health_.valid = false;
+        static constexpr std::array<const char*, health_events::kinds> what = {
+            "the EOS's tangent modulus was taken at the capped compression (the singularity margin)",
+            "the EOS's tangent modulus was negative and taken as 0",
+            "(K + 4G/3)/rho was not positive: the wave speed was taken as 0"};
+        for (std::size_t k = 0; k < health_events::kinds; ++k) {
+            if (pending_health_.count[k] == 0) continue;
+            health_.count[k] += pending_health_.count[k];
+            if (health_.first[k].empty())
+                health_.first[k] = describe_particle(particles_[std::size_t(pending_health_.first[k])], steps_,
+                                                     double(time_)) + ": " + what[k];
+        }
+    }
+
     // State set before the first step or changed between steps (by the user or a restart) is
     // checked before anything uses it, so a bad value is blamed on its own particle, not on a
     // neighbour or on the time step it would spoil.
@@ -979,6 +1027,14 @@ private:
     std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
     std::array<std::vector<int>, 3> colour_slabs_;
     step_timings timings_;
+    health_events health_;
+    struct pending_health {
+        std::uint64_t step = 0;
+        bool valid = false;
+        std::array<std::uint64_t, health_events::kinds> count{};
+        std::array<std::ptrdiff_t, health_events::kinds> first{};
+    };
+    mutable pending_health pending_health_;  // stable_time_step's guards, until the step is taken
     real mass_cutoff_ = 0;
     std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
     // Volumetric averaging, per body and cell: sums of V tr(L) and V, and of V tr(sigma)/dim

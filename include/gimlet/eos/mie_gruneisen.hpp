@@ -96,10 +96,18 @@ public:
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
     /// de = -P dV along an isentrope, for the time step's wave speed (never negative).
     /// The compression is capped at the singularity margin (where pressure() stops the run),
-    /// so the modulus is finite for any state.
+    /// so the modulus is finite for any state; the three-argument form says when that cap, or
+    /// the clamp of a negative modulus to 0, acted (eos::guard bits added to `guards`).
     template <class Real, class P>
     [[nodiscard]] Real bulk_modulus(const point_state<Real>& st, const P& p) const {
-        const double j = std::max(double(st.J), 1.0 - (1.0 - margin_) / s_);
+        unsigned ignored = 0;
+        return bulk_modulus(st, p, ignored);
+    }
+    template <class Real, class P>
+    [[nodiscard]] Real bulk_modulus(const point_state<Real>& st, const P& p, unsigned& guards) const {
+        const double j_cap = 1.0 - (1.0 - margin_) / s_;
+        if (!(double(st.J) >= j_cap)) guards |= guard::compression_capped;
+        const double j = std::max(double(st.J), j_cap);
         const double eta = 1.0 - j;
         const double grho = gamma_ * double(st.density);
         const double excess = energy_excess(j, p);
@@ -107,6 +115,7 @@ public:
         const double pres = ph + grho * excess;
         // -V d/dV = J d/d(eta) and Gamma de_H/dV = -Gamma (P_H + eta P_H') / 2, with P_H' = dP_H/d(eta).
         const double k = j * dph + grho * excess - 0.5 * gamma_ * (ph + eta * dph) + gamma_ * pres;
+        if (!(k >= 0.0)) guards |= guard::negative_modulus;
         return Real(std::max(k, 0.0));
     }
 
