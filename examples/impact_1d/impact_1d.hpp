@@ -28,6 +28,7 @@ struct settings {
     double end_time = 3e-6;    // s
     gimlet::update_scheme scheme = gimlet::update_scheme::usf;
     bool volumetric_average = false;  // solver_options::volumetric_average
+    double margin = 0;         // m of empty grid beyond each free end (0: 10 cells); room to fly off
     int threads = 0;
 };
 
@@ -144,8 +145,9 @@ solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::materials
     gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 1e-3, "cell size (m)", s.cell, "(0, 1e-3]");
     const double width = 4 * s.cell;  // periodic strip, the uGIMP stencil wide
     gimlet::grid_spec<S> gs;
-    gs.lower = S::vector(0.0, -s.length - 10 * s.cell);
-    gs.upper = S::vector(width, s.length + 10 * s.cell);
+    const double margin = s.margin > 0 ? s.margin : 10 * s.cell;
+    gs.lower = S::vector(0.0, -s.length - margin);
+    gs.upper = S::vector(width, s.length + margin);
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, M> scene(gs);
