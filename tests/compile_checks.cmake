@@ -140,3 +140,17 @@ add_test(NAME package.consume
 set_tests_properties(package.consume PROPERTIES
     LABELS package
     FIXTURES_REQUIRED gimlet_installed)
+
+# The custom_material tutorial stands alone: built on its own against the installed package, as a
+# user who copies its folder out of the tree would (docs/concepts.md points to it).
+add_test(NAME package.tutorial
+         COMMAND "${CMAKE_CTEST_COMMAND}"
+                 --build-and-test "${PROJECT_SOURCE_DIR}/examples/custom_material" "${CMAKE_BINARY_DIR}/package-tutorial"
+                 --build-generator "${CMAKE_GENERATOR}"
+                 --build-makeprogram "${CMAKE_MAKE_PROGRAM}"
+                 ${_gimlet_consumer_config}
+                 --build-options ${_gimlet_consumer_options}
+                 --test-command custom_material --output "${CMAKE_BINARY_DIR}/package-tutorial/out")
+set_tests_properties(package.tutorial PROPERTIES
+    LABELS package
+    FIXTURES_REQUIRED gimlet_installed)

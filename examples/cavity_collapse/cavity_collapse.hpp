@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The reference paper's cavity-collapse runs (its section 4, PHYSICS.md section 8): two HMX
+// The reference paper's cavity-collapse runs (its section 4, docs/physics.md section 8): two HMX
 // blocks 40 mm x 50 mm, one above the other with a 4 mm gap, each with a circular cavity of
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.

@@ -4,7 +4,7 @@
 
     python3 sweep.py SWEEP [--cell MM] [--jobs N] [--binary PATH] [--output DIR]
 
-SWEEP is one of (PHYSICS.md section 8; docs/reproduction.md):
+SWEEP is one of (docs/physics.md section 8; docs/reproduction.md):
   weak-velocity    D(t) for v = 100, 150, 200 m/s, R = 10 mm
   weak-radius      D(t) for R = 0, 6, 8, 10 mm, v = 150 m/s
   strong-velocity  D(t) for v = 230, 300, 500, 700 m/s, R = 10 mm

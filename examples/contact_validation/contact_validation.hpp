@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The reference paper's contact validation run (its section 3, PHYSICS.md section 8): two HMX
+// The reference paper's contact validation run (its section 3, docs/physics.md section 8): two HMX
 // blocks 40 mm x 50 mm, one above the other with a 4 mm gap, no cavity, each moving towards the
 // other at v; periodic in x, free in y. Pressure along the vertical centre line at a given time,
 // for each contact policy. Shared by the example and its test.

@@ -7,13 +7,19 @@
 // registered anywhere: the solver is specialised for our type at compile time.
 //
 //   custom_material [--relaxation-time 0.5] [--output results/custom_material]
-#include "common/cli.hpp"
-
+//
+// It needs gimlet and nothing else: copy this folder anywhere, then
+//   cmake -S . -B build -DCMAKE_PREFIX_PATH=<gimlet's install prefix> && cmake --build build
 #include <gimlet/gimlet.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 namespace my {
 
@@ -82,10 +88,24 @@ auto disks(const Material& mat) {
 }
 
 int main(int argc, char** argv) try {
-    example::cli args(argc, argv, "usage: custom_material [--relaxation-time TAU_s] [--output DIR]");
-    const double tau = args.real("relaxation-time", 0.5, 0.0, 1e6);
-    const auto out = args.directory("output", "results/custom_material");
-    args.finish();
+    // The two flags, read by hand so that the tutorial stands alone.
+    double tau = 0.5;
+    std::filesystem::path out = "results/custom_material";
+    for (int i = 1; i < argc; i += 2) {
+        const std::string flag = argv[i];
+        if (flag != "--relaxation-time" && flag != "--output") throw std::invalid_argument("unknown flag " + flag);
+        if (i + 1 >= argc) throw std::invalid_argument("flag " + flag + " needs a value");
+        const std::string value = argv[i + 1];
+        if (flag == "--output") {
+            out = value;
+            continue;
+        }
+        char* end = nullptr;
+        tau = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0') tau = NAN;  // not a number: refused below
+        gimlet::require(std::isfinite(tau) && tau > 0 && tau <= 1e6, "--relaxation-time (s)", tau, "(0, 1e6]");
+    }
+    std::filesystem::create_directories(out);
 
     const auto k = gimlet::elastic_moduli::from_young_poisson(1000.0, 0.3);
     // 4. The solver, specialised for our material; it stores our field because we asked for it.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Contact policies (PHYSICS.md section 3): when contact starts, release, momentum, Coulomb
+// Contact policies (docs/physics.md section 3): when contact starts, release, momentum, Coulomb
 // friction, interpenetration, and a user-written policy.
 //
 // Every scene is a narrow plane-strain strip, periodic across (x) and 4 cells wide, with the
@@ -216,7 +216,7 @@ using early_policies = std::tuple<single_case, bardenhagen_case>;
 
 // Single field and plain Bardenhagen couple the bodies as soon as they map to a common node:
 // uGIMP particles (half-width h/4) reach h + h/4 from their centre, so facing centres 2.5 cells
-// apart already share a node. PHYSICS.md section 3: "contact happens too early".
+// apart already share a node. docs/physics.md section 3: "contact happens too early".
 TEMPLATE_LIST_TEST_CASE("single-field and Bardenhagen contact start while the bodies are a cell or more apart",
                         "[contact][verification]", early_policies) {
     const strip st;

@@ -6,7 +6,7 @@
 /// Set-up (plane strain, SI units, everything O(1) so the numbers read directly):
 /// - bar 0 <= x <= L = 1 m, rho = 1 kg/m^3, E = 1 Pa, nu = 0. With nu = 0, K = E/3 and
 ///   G = E/2, so the longitudinal modulus K + 4G/3 = E and uniaxial strain is uniaxial stress:
-///   c = sqrt(E / rho) = 1 m/s (PHYSICS.md section 1, step 6).
+///   c = sqrt(E / rho) = 1 m/s (docs/physics.md section 1, step 6).
 /// - fixed at x = 0: the grid's lower x bound with boundary::fixed. grid.hpp applies a fixed
 ///   axis at both of its ends (nodes k <= 0 and k >= N), so the grid extends `free_cells`
 ///   cells beyond x = L: the upper wall nodes are then out of reach of every particle's stencil

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// eos::mie_gruneisen with the paper's HMX constants (PHYSICS.md sections 5 and 7): the Hugoniot
+// eos::mie_gruneisen with the paper's HMX constants (docs/physics.md sections 5 and 7): the Hugoniot
 // reference curve in compression and tension, the energy term, continuity at eta = 0, the
 // tangent bulk modulus against a finite-difference isentrope, the pressure-energy solve of a
 // step, and the stop at the singularity eta = 1/s.
@@ -130,7 +130,7 @@ TEST_CASE("Mie-Grueneisen: continuous at eta = 0, and K = rho0 c0^2 at rest", "[
     const double c_expected = std::sqrt((K0 + 4 * G / 3) / rho0);
     const double c = gimlet::longitudinal_wave_speed(p, mat);
     CHECK(c == Approx(c_expected).epsilon(1e-14));  // same arithmetic up to ulps
-    CHECK(std::abs(c - 3290.0) < 5.0);             // PHYSICS.md quotes 3.29 km/s (3 digits)
+    CHECK(std::abs(c - 3290.0) < 5.0);             // docs/physics.md quotes 3.29 km/s (3 digits)
 }
 
 TEST_CASE("Mie-Grueneisen: bulk modulus is the isentropic -V dP/dV", "[verification][eos]") {

@@ -69,10 +69,11 @@ gimlet_cli_case(sulsky_disks unknown_flag  "--time-us 5"       "unknown flag --t
 gimlet_cli_case(sulsky_disks output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
 
 # custom_material
-gimlet_cli_case(custom_material relaxation_zero "--relaxation-time 0"   "--relaxation-time = 0 is invalid; valid range: (0, 1e+06]")
-gimlet_cli_case(custom_material relaxation_inf  "--relaxation-time inf" "--relaxation-time = inf is invalid; valid range: (0, 1e+06]")
+gimlet_cli_case(custom_material relaxation_zero "--relaxation-time 0"   "--relaxation-time (s) = 0 is invalid; valid range: (0, 1e6]")
+gimlet_cli_case(custom_material relaxation_inf  "--relaxation-time inf" "--relaxation-time (s) = inf is invalid; valid range: (0, 1e6]")
+gimlet_cli_case(custom_material relaxation_text "--relaxation-time 0.5s" "--relaxation-time (s) = nan is invalid; valid range: (0, 1e6]")
 gimlet_cli_case(custom_material unknown_flag    "--cell 0.1"            "unknown flag --cell")
-gimlet_cli_case(custom_material output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
+gimlet_cli_case(custom_material missing_value   "--output"              "flag --output needs a value")
 
 # cavity_collapse
 gimlet_cli_case(cavity_collapse radius_too_big "--radius 30"       "--radius = 30 is invalid; valid range: [0, 18]")

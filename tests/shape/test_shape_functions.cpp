@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file
-/// Verification of the shape-function policies against PHYSICS.md section 2: partition of
+/// Verification of the shape-function policies against docs/physics.md section 2: partition of
 /// unity, linear and gradient reproduction in 2-D and 3-D, positivity, continuity and
 /// derivatives of the 1-D factors, and the reference paper's Φ (eq-mpm-shape) with its
 /// misprint corrected. Everything is in cell units (node k at x = k).
@@ -73,7 +73,7 @@ axis_weights<Sh, Real> evaluate(Real x, Real l) {
     return a;
 }
 
-/// Each policy's 1-D weight written branch by branch as PHYSICS.md section 2 states it, an
+/// Each policy's 1-D weight written branch by branch as docs/physics.md section 2 states it, an
 /// oracle independent of the policies' closed forms. `r = x_p - x_i` in cells.
 template <class Sh>
 double reference_weight(double r, double l) {
@@ -153,7 +153,7 @@ struct moments {
     Real min_w = std::numeric_limits<Real>::infinity();   ///< min S_ip
 };
 
-/// The tensor-product weights of PHYSICS.md section 2, S = Π_d w_d and
+/// The tensor-product weights of docs/physics.md section 2, S = Π_d w_d and
 /// ∂S/∂x_d = dw_d Π_{e≠d} w_e, summed over the stencil of a particle at `x` with half-width `l`.
 template <class Sh, int Dim, class Real>
 moments<Dim, Real> stencil_moments(const vec<Dim, Real>& x, const vec<Dim, Real>& l) {
@@ -312,7 +312,7 @@ TEMPLATE_LIST_TEST_CASE("float: partition of unity and reproduction in 2-D and 3
     check_all_reproduction<TestType, 3, float>(sampling::boundaries, 1e-6);
 }
 
-TEMPLATE_LIST_TEST_CASE("1-D weights follow PHYSICS.md section 2 branch by branch",
+TEMPLATE_LIST_TEST_CASE("1-D weights follow docs/physics.md section 2 branch by branch",
                         "[shape][verification]", all_shapes) {
     // Also checks the stencil placement: a node outside [first, first + stencil) must be one
     // the formula gives zero, for every position including nodes and half-cells. Where the
@@ -375,7 +375,7 @@ TEMPLATE_LIST_TEST_CASE("derivative matches a central difference of the weight",
 }
 
 TEST_CASE("the paper's Phi (eq-mpm-shape) with its misprint corrected", "[shape][verification]") {
-    // PHYSICS.md section 2: the paper prints the inner branch as (7 - 16 r^2)/16; it is /8.
+    // docs/physics.md section 2: the paper prints the inner branch as (7 - 16 r^2)/16; it is /8.
     CHECK(sh::paper_phi(0.0) == Approx(7.0 / 8.0).margin(1e-15));
     CHECK(sh::paper_phi(0.25) == Approx(0.75).margin(1e-15));
     CHECK(sh::paper_phi(0.75) == Approx(0.25).margin(1e-15));

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Thermal effects are paid for only where a scene asks for them (PHYSICS.md section 6): with
+// Thermal effects are paid for only where a scene asks for them (docs/physics.md section 6): with
 // thermal::none there is no temperature column and no thermal code is compiled into the step;
 // viscosity::none adds no work. HMX-like materials with the paper's constants.
 #include <gimlet/gimlet.hpp>
@@ -162,7 +162,7 @@ TEST_CASE("thermal off: an HMX impact runs without a temperature and without the
     CHECK(max_wp > 0);
     // The impact pressure is rho0 U_s v = 0.89 GPa; on this coarse grid (8 cells per block)
     // single-field contact acts early and squeezes the facing particle rows (the peak reaches
-    // ~3 GPa there, PHYSICS.md section 3), so only that a shock formed is asked for (> 0.3 GPa).
+    // ~3 GPa there, docs/physics.md section 3), so only that a shock formed is asked for (> 0.3 GPa).
     CHECK(peak_pressure > 0.3e9);
 
     // Temperature feeds nothing back into the mechanics (the EOS takes e, not T), so the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Radial return of strength::von_mises at a single material point (PHYSICS.md section 4),
+// Radial return of strength::von_mises at a single material point (docs/physics.md section 4),
 // driven through gimlet::update_material_point exactly as the solver drives it, in 2-D
 // (plane strain) and 3-D, with the HMX shear modulus and yield stress.
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// thermal::hugoniot_heating with the paper's HMX constants (PHYSICS.md sections 6 and 7):
+// thermal::hugoniot_heating with the paper's HMX constants (docs/physics.md sections 6 and 7):
 // the Walsh-Christian shock temperature against an independent RK4 integration of the same
 // ODE, plastic-work heating, and the irreversible (isentropic-on-expansion) variant.
 #include <gimlet/gimlet.hpp>

@@ -17,7 +17,7 @@ namespace detail {
 
 /// The Bardenhagen et al. (2000) correction of body `a` against the centre of mass of a pair at
 /// one node, along the unit normal n (outward of a), with Coulomb coefficient mu; returns the
-/// velocity change of body a, or zero if a is not approaching (PHYSICS.md section 3):
+/// velocity change of body a, or zero if a is not approaching (docs/physics.md section 3):
 /// approaching if (v_a - v_cm) . n > 0; then the normal relative velocity is removed and the
 /// tangential one reduced by at most mu times the normal change (mu = inf: no slip).
 /// With `kept` the normal constraint holds even if the body is separating

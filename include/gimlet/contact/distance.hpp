@@ -8,7 +8,7 @@
 namespace gimlet::contact {
 
 /// The reference paper's improved criterion (its section 2.2, equation R_i^pq <= L/2;
-/// PHYSICS.md section 3): the Bardenhagen et al. (2000) correction is applied at a node only
+/// docs/physics.md section 3): the Bardenhagen et al. (2000) correction is applied at a node only
 /// where the two bodies are close there, and only while they approach (the implied normal force
 /// is compressive; when it would turn tensile the correction is dropped and the bodies separate).
 ///

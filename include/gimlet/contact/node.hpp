@@ -71,7 +71,7 @@ struct node_view {
         return contact::pair_normal(normal[a], normal[b]);
     }
     /// Distance between the facing particle centres of bodies a and b along their pair normal
-    /// (the reference paper's R_i^pq, its section 2.2; PHYSICS.md section 3).
+    /// (the reference paper's R_i^pq, its section 2.2; docs/physics.md section 3).
     [[nodiscard]] real gap(std::size_t a, std::size_t b) const noexcept {
         return -(reach[a * count + b] + reach[b * count + a]);
     }

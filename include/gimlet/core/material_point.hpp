@@ -4,7 +4,7 @@
 /// What the solver hands to the constitutive policies (strength, eos, viscosity, thermal) for
 /// one particle: its kinematic state and, during an update, the step's rates. Tensors are 3x3
 /// in both 2-D and 3-D: in plane strain the out-of-plane rows are zero in D and W, and the
-/// stress carries sigma_zz (PHYSICS.md section 4), so a law written once works in both.
+/// stress carries sigma_zz (docs/physics.md section 4), so a law written once works in both.
 
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/particle_store.hpp"
@@ -21,7 +21,7 @@ struct point_state {
     Real density0 = 0;  ///< reference density of the body's material
 };
 
-/// One constitutive update over a time step (PHYSICS.md section 1, step 5).
+/// One constitutive update over a time step (docs/physics.md section 1, step 5).
 template <class Real>
 struct point_step : point_state<Real> {
     using tensor3 = Eigen::Matrix<Real, 3, 3>;

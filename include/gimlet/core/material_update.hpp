@@ -2,7 +2,7 @@
 #pragma once
 /// \file
 /// The update of one material point from its velocity gradient: deformation gradient, then the
-/// constitutive policies (PHYSICS.md section 1, step 5; section 4). The solver calls it for every
+/// constitutive policies (docs/physics.md section 1, step 5; section 4). The solver calls it for every
 /// particle; tests call it directly to check a single material point.
 
 #include "gimlet/core/describe.hpp"
@@ -56,7 +56,7 @@ template <Material M, class P>
 }
 
 /// Longitudinal wave speed sqrt((K + 4G/3) / rho) from the EOS tangent bulk modulus and the
-/// strength's shear modulus (PHYSICS.md section 1, step 6). `guards` gains the eos::guard bits of
+/// strength's shear modulus (docs/physics.md section 1, step 6). `guards` gains the eos::guard bits of
 /// the silent guards that acted: the EOS's own (if its bulk_modulus reports them) and
 /// eos::guard::no_wave_speed where (K + 4G/3)/rho is not positive (the speed is then 0).
 template <Material M, class P>
@@ -95,9 +95,9 @@ void update_material_point(const M& mat, const P& p,
 
     matrix& F = p.template get<fields::deformation_gradient>();
     const real j_old = F.determinant();
-    // The midpoint (Cayley) form of F' = L F (Hughes & Winget 1980, eq. 14). Unlike the
-    // forward-Euler (I + dt L) F of PHYSICS.md, it keeps det F = 1 exactly under a rigid spin,
-    // so a rotating body gains no spurious pressure; both are first-order consistent.
+    // The midpoint (Cayley) form of F' = L F (Hughes & Winget 1980, eq. 14; docs/physics.md
+    // section 1, step 5). Unlike the forward-Euler (I + dt L) F, it keeps det F = 1 exactly under
+    // a rigid spin, so a rotating body gains no spurious pressure; both are first-order consistent.
     const matrix half = real(0.5) * dt * L;
     F = (matrix::Identity() - half).inverse() * ((matrix::Identity() + half) * F);
 
@@ -123,7 +123,7 @@ void update_material_point(const M& mat, const P& p,
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, longitudinal_wave_speed(p, mat), p);
-    // Stress power per unit mass, midpoint in time (PHYSICS.md section 1): de = dt v_mid sigma:D,
+    // Stress power per unit mass, midpoint in time (docs/physics.md section 1): de = dt v_mid sigma:D,
     // with sigma^{n+1} = s - (P + q) I and the midpoint specific volume
     // v_mid = (v^n + v^{n+1}) / 2 = (1 + J^n / J^{n+1}) / (2 rho^{n+1}): with the end-of-step
     // v alone, de = -P dv is first-order short in the step's strain (7 % on a shock's landing

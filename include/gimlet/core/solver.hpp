@@ -44,7 +44,7 @@ struct solver_options {
     update_scheme scheme = update_scheme::musl;
     /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP).
     double pic_fraction = 0.0;
-    /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (PHYSICS.md section 1, step 6).
+    /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
     double cfl = 0.4;
     /// Nodes lighter than this fraction of the heaviest particle's mass are treated as empty
     /// (zero velocity), never divided by; the force the particles put on such a node goes back
@@ -114,7 +114,7 @@ struct step_timings {
     }
 };
 
-/// The explicit GIMP/MPM solver (PHYSICS.md section 1).
+/// The explicit GIMP/MPM solver (docs/physics.md section 1).
 ///
 /// \tparam S  the space (dimension 2 = plane strain, or 3; float or double).
 /// \tparam Sh the shape-function policy (shape::Shape).
@@ -196,7 +196,7 @@ public:
     }
 
     /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
-    /// (PHYSICS.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
+    /// (docs/physics.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
     /// artificial viscosity acts (viscosity::Viscosity).
     [[nodiscard]] real stable_time_step() const {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
@@ -343,7 +343,7 @@ private:
 
     // ---- the step -----------------------------------------------------------------------
     //
-    // The phases of PHYSICS.md section 1 are fused where their arithmetic allows it, so a step
+    // The phases of docs/physics.md section 1 are fused where their arithmetic allows it, so a step
     // makes few passes over the particles and the nodes: the weights, one scatter (mass,
     // momentum and forces; USF without contact maps its forces after the stress update, USF
     // with contact both), one node pass (v^n, momentum update, v^{n+1}), one
@@ -411,7 +411,7 @@ private:
         const bool musl = options_.scheme == update_scheme::musl;
         grid_to_particles(dt, musl);
         if (musl) {
-            // MUSL: the updated particle momenta mapped back to the grid (PHYSICS.md section 1,
+            // MUSL: the updated particle momenta mapped back to the grid (docs/physics.md section 1,
             // step 4), scattered by grid_to_particles.
             nodal_velocity(grid_.velocity);
             grid_.apply_walls(grid_.velocity);
@@ -497,7 +497,7 @@ private:
     // ---- transfers ----------------------------------------------------------------------
 
     // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
-    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1) in one pass.
+    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass.
     template <bool Forces>
     void scatter() {
         const auto& m = particles_.template column<fields::mass>();
@@ -522,7 +522,7 @@ private:
                 grid_.mass[e] += w * mp;
                 grid_.momentum[e] += w * mv;
                 // G is the gradient with respect to the particle position, so sum m_p G_ip points
-                // out of the body (PHYSICS.md section 3; Bardenhagen et al. 2000, eq. 16).
+                // out of the body (docs/physics.md section 3; Bardenhagen et al. 2000, eq. 16).
                 if constexpr (multi_field) mass_gradient_[e] += mp * g;
                 if constexpr (Forces) {
                     grid_.force[e] -= vs * g;
@@ -534,7 +534,7 @@ private:
         });
     }
 
-    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (PHYSICS.md section 1, step 1), after USF's
+    // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
     // stress update.
     void map_forces() {
         const auto& m = particles_.template column<fields::mass>();
@@ -554,7 +554,7 @@ private:
     }
 
     // v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
-    // (PHYSICS.md section 1, step 2).
+    // (docs/physics.md section 1, step 2).
     void nodal_velocity(std::vector<vector>& out) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
@@ -565,7 +565,7 @@ private:
     }
 
     // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), (mv)_i += dt f_i,
-    // v_i^{n+1} = (mv)_i / m_i, then the walls (PHYSICS.md section 1, step 2). A node under the
+    // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
     // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
     // particles that exerted it (grid_to_particles).
     void update_grid_momentum(real dt, bool with_old_velocity) {
@@ -598,8 +598,8 @@ private:
     // by the particle's own state (docs/equations.md, "Light nodes").
 
     // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
-    // (PHYSICS.md section 1, step 3), with the light nodes' forces above. With remap (MUSL),
-    // each particle's new momentum is scattered back to the grid in the same pass (PHYSICS.md
+    // (docs/physics.md section 1, step 3), with the light nodes' forces above. With remap (MUSL),
+    // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
     // section 1, step 4): the gather reads grid velocities only and the scatter writes grid
     // momenta only.
     void grid_to_particles(real dt, bool remap) {
@@ -653,7 +653,7 @@ private:
         }
     }
 
-    // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (PHYSICS.md
+    // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
     // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
     void update_material_points(real dt, const std::vector<vector>& vg) {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
@@ -874,7 +874,7 @@ private:
     enum class contact_pass { decide, remap, trial, keep };
 
     // At every node shared by two or more bodies, let the contact policy correct the bodies'
-    // momenta (PHYSICS.md section 3), then refresh their velocities and the walls.
+    // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
     void resolve_contact(contact_pass pass) {
         const std::size_t nodes = grid_.size();
         const bool trial = pass == contact_pass::trial, deciding = trial || pass == contact_pass::decide;

@@ -22,7 +22,7 @@ struct space {
     using ivector = Eigen::Matrix<int, Dim, 1>;
     using matrix = Eigen::Matrix<Real, Dim, Dim>;
     /// Constitutive laws always work on 3x3 tensors; in plane strain the out-of-plane
-    /// components are carried explicitly (PHYSICS.md section 4: s_zz != 0).
+    /// components are carried explicitly (docs/physics.md section 4: s_zz != 0).
     using tensor3 = Eigen::Matrix<Real, 3, 3>;
 };
 

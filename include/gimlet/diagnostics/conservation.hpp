@@ -39,7 +39,7 @@ template <class Solver>
 }
 
 /// Internal energy sum m_p e_p (J): the stress work stored in (elastic: strain energy) or
-/// dissipated by the material since the start, integrated from sigma:D (PHYSICS.md section 1).
+/// dissipated by the material since the start, integrated from sigma:D (docs/physics.md section 1).
 template <class Solver>
 [[nodiscard]] double internal_energy(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();

@@ -8,7 +8,7 @@
 
 namespace gimlet::eos {
 
-/// Linear pressure-volume law \f$ P = K (1 - J) \f$, J = det F (PHYSICS.md section 5).
+/// Linear pressure-volume law \f$ P = K (1 - J) \f$, J = det F (docs/physics.md section 5).
 /// It derives from the stored energy \f$ \tfrac12 K (J - 1)^2 \f$ per unit reference volume,
 /// so the pressure work is exactly recoverable (energy tests rely on that); its tangent bulk
 /// modulus is \f$ -V\,dP/dV = K J \f$.

@@ -27,7 +27,7 @@ enum class energy_reference {
 /// \f[ P = P_H(V) + \frac{\Gamma}{V}\,(e - e_H(V)), \qquad e_H = \tfrac12 P_H (V_0 - V) \f]
 /// with, for \f$ \eta = 1 - V/V_0 \ge 0 \f$, \f$ P_H = \rho_0 c_0^2 \eta / (1 - s\eta)^2 \f$
 /// (the Hugoniot of U_s = c_0 + s U_p), and in tension \f$ P_H = \rho_0 c_0^2 (V_0/V - 1) \f$
-/// (PHYSICS.md section 5; the reference paper's EOS, with its misprinted \f$\rho_0^2\f$ in the
+/// (docs/physics.md section 5; the reference paper's EOS, with its misprinted \f$\rho_0^2\f$ in the
 /// tension branch corrected). \f$\Gamma/V = \Gamma\rho\f$ with constant \f$\Gamma\f$.
 ///
 /// \f$P_H\f$ is singular at \f$\eta = 1/s\f$. The EOS stops the run with a numerical_error

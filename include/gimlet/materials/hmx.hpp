@@ -2,7 +2,7 @@
 #pragma once
 /// \file
 /// The reference paper's HMX: von Mises plasticity, Mie-Grueneisen EOS, artificial viscosity,
-/// shock and plastic-work heating, with the paper's constants (PHYSICS.md section 7).
+/// shock and plastic-work heating, with the paper's constants (docs/physics.md section 7).
 
 #include "gimlet/core/elastic_moduli.hpp"
 #include "gimlet/core/error.hpp"
@@ -15,7 +15,7 @@
 
 namespace gimlet::materials {
 
-/// The reference paper's HMX constants (its Table of parameters; PHYSICS.md section 7).
+/// The reference paper's HMX constants (its Table of parameters; docs/physics.md section 7).
 struct hmx_constants {
     double young = 11.87e9;          ///< E (Pa)
     double poisson = 0.25;           ///< nu
@@ -49,7 +49,7 @@ template <eos::energy_reference Ref = eos::energy_reference::internal_energy,
           class T = thermal::isentrope_temperature, class V = viscosity::bulk>
 [[nodiscard]] hmx_material<Ref, T, V> make_hmx(const hmx_constants& c = {}, const V& viscosity = V{}) {
     // Shear from E and nu; pressure from the EOS (the elastic bulk modulus E/(3(1-2nu)) is not
-    // used: PHYSICS.md section 7).
+    // used: docs/physics.md section 7).
     require_positive("density rho0 (kg/m^3)", c.density);  // before the EOS and thermal name it
     const auto moduli = elastic_moduli::from_young_poisson(c.young, c.poisson);
     auto thermal = [&] {

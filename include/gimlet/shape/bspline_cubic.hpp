@@ -9,7 +9,7 @@
 
 namespace gimlet::shape {
 
-/// The uniform cubic B-spline (Steffen, Kirby & Berzins 2008; PHYSICS.md section 2):
+/// The uniform cubic B-spline (Steffen, Kirby & Berzins 2008; docs/physics.md section 2):
 /// \f[ N(r) = \tfrac23 - r^2 + \tfrac12 |r|^3 \ (|r| < 1), \quad \tfrac16 (2 - |r|)^3
 ///     \ (1 \le |r| < 2), \quad 0 \text{ beyond}. \f]
 /// Smoother than the quadratic one at the price of a 4-node stencil per axis.

@@ -9,7 +9,7 @@
 
 namespace gimlet::shape {
 
-/// The uniform quadratic B-spline (Steffen, Kirby & Berzins 2008; PHYSICS.md section 2):
+/// The uniform quadratic B-spline (Steffen, Kirby & Berzins 2008; docs/physics.md section 2):
 /// \f[ N(r) = \tfrac34 - r^2 \ (|r| < \tfrac12), \quad \tfrac12 (\tfrac32 - |r|)^2
 ///     \ (\tfrac12 \le |r| < \tfrac32), \quad 0 \text{ beyond}. \f]
 /// Its smooth gradient removes the cell-crossing error of linear MPM without a particle size.

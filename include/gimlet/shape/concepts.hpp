@@ -2,7 +2,7 @@
 #pragma once
 /// \file
 /// The shape-function contract. Every shape function in gimlet is a tensor product of 1-D
-/// factors (PHYSICS.md section 2), so a policy states only its 1-D weight and gradient on a
+/// factors (docs/physics.md section 2), so a policy states only its 1-D weight and gradient on a
 /// uniform grid, in cell units, plus how wide its stencil is and what particle half-width it
 /// uses (GIMP families need one; plain MPM and B-splines ignore it).
 

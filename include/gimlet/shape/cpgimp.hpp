@@ -11,7 +11,7 @@ namespace gimlet::shape {
 
 /// cpGIMP: the GIMP weight of ugimp, with a half-width that follows the deformation, so a
 /// stretched particle still covers the space it occupies (Bardenhagen & Kober 2004;
-/// Wallstedt & Guilkey 2008; PHYSICS.md section 2). The box stays axis-aligned: per axis,
+/// Wallstedt & Guilkey 2008; docs/physics.md section 2). The box stays axis-aligned: per axis,
 /// `l_d = l0_d |F_dd|`, the stretch along that axis; shear is not followed (that needs CPDI).
 struct cpgimp {
     static constexpr const char* name = "cpgimp";  ///< for output and tables

@@ -9,7 +9,7 @@
 
 namespace gimlet::shape {
 
-/// The linear hat `S(r) = 1 - |r|/h` for |r| < h (Sulsky, Chen & Schreyer 1994; PHYSICS.md
+/// The linear hat `S(r) = 1 - |r|/h` for |r| < h (Sulsky, Chen & Schreyer 1994; docs/physics.md
 /// section 2). Its gradient jumps at nodes, which is the cell-crossing noise GIMP removes.
 ///
 /// On a node the gradient is one-sided (from the right), the choice `first = floor(x)` implies;

@@ -13,7 +13,7 @@
 namespace gimlet::shape {
 
 /// Uniform GIMP: the hat averaged over a particle domain of fixed half-width l_p
-/// (Bardenhagen & Kober 2004; PHYSICS.md section 2), C1 so particles crossing cell edges do not
+/// (Bardenhagen & Kober 2004; docs/physics.md section 2), C1 so particles crossing cell edges do not
 /// kick the grid. The half-width never changes with the deformation; see cpgimp for one that
 /// does.
 ///
@@ -39,7 +39,7 @@ struct ugimp {
 };
 
 /// The reference paper's Φ (eq-mpm-shape), `r = |x_p - x_i| / L` in cell units, with its
-/// misprint corrected (PHYSICS.md section 2): the paper prints the inner branch as
+/// misprint corrected (docs/physics.md section 2): the paper prints the inner branch as
 /// (7 - 16r²)/16, which jumps from 3/8 to 3/4 at r = 1/4 and breaks partition of unity; the
 /// branch is (7 - 16r²)/8.
 ///

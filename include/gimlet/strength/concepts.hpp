@@ -15,7 +15,7 @@ namespace gimlet::strength {
 /// - `update(step, s, p)`: advance the 3x3 deviatoric stress `s` (in/out, traceless) over
 ///   `step.dt` given the rates `step.D`, `step.W`; return the energy dissipated in the step per
 ///   unit mass (J/kg; plastic work, 0 for elastic laws). The solver adds the pressure from the
-///   EOS and the artificial viscosity: sigma = s - (P + q) I (PHYSICS.md section 4).
+///   EOS and the artificial viscosity: sigma = s - (P + q) I (docs/physics.md section 4).
 /// - `shear_modulus(state, p)`: the current tangent shear modulus G (Pa), used in the wave
 ///   speed sqrt((K + 4G/3) / rho) that sets the time step.
 ///

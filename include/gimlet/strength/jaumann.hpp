@@ -15,7 +15,7 @@ template <class Real>
 
 /// The rotation part of a Jaumann-rate update over one step: s <- Q s Q^T with
 /// Q = (I - dt W/2)^-1 (I + dt W/2) (Hughes & Winget 1980, eqs. 14-16). To first order in dt it
-/// is s + dt (W s - s W), the Jaumann term of PHYSICS.md section 4; unlike that explicit form, Q
+/// is s + dt (W s - s W), the Jaumann term of docs/physics.md section 4; unlike that explicit form, Q
 /// is exactly orthogonal, so a rigid spin rotates the stress without changing its invariants.
 template <class Real>
 [[nodiscard]] Eigen::Matrix<Real, 3, 3> jaumann_rotate(const point_step<Real>& st,

@@ -11,7 +11,7 @@ namespace gimlet::strength {
 
 /// Deviatoric hypoelastic law with the Jaumann (co-rotational) rate
 /// \f[ \dot s = 2 G D' + W s - s W \f]
-/// (PHYSICS.md section 4; the elastic predictor of the reference paper's plasticity model),
+/// (docs/physics.md section 4; the elastic predictor of the reference paper's plasticity model),
 /// integrated with the rotation part in incrementally objective form (see jaumann_rotate).
 /// The Jaumann terms keep a rigidly rotating stressed body's stress rotating with it and leave
 /// an unstressed one unstressed. Combine with an EOS for the pressure (e.g. eos::linear).

@@ -12,7 +12,7 @@
 
 namespace gimlet::strength {
 
-/// Elastic-plastic deviatoric law of the reference paper (PHYSICS.md section 4):
+/// Elastic-plastic deviatoric law of the reference paper (docs/physics.md section 4):
 /// - predictor \f$ s^* = Q s^n Q^T + 2 G \Delta t D' \f$ (Jaumann rate, see jaumann_rotate);
 /// - yield \f$ \sigma_{eq} = \sqrt{3 J_2} \le Y = Y_0 + H \varepsilon_p \f$, \f$ J_2 = \tfrac12 s:s \f$;
 /// - radial return \f$ \Delta\varepsilon_p = (\sigma_{eq}^* - Y)/(3G + H) \f$,

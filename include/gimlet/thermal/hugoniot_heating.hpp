@@ -22,7 +22,7 @@ enum class expansion {
     isentropic,
 };
 
-/// Temperature from volume changes and dissipation (PHYSICS.md section 6):
+/// Temperature from volume changes and dissipation (docs/physics.md section 6):
 /// \f[ \frac{dT}{dV} = \frac{s c_0^2 (V_0 - V)^2}{c_v\,[(s-1)V_0 - sV]^3} - \frac{\Gamma}{V} T \f]
 /// (Walsh & Christian 1955, for the Hugoniot U_s = c_0 + s U_p and constant Gamma), integrated over each step's volume change with the integrating factor
 /// V^Gamma: T_new V_new^Gamma = T_old V_old^Gamma + int a(V) V^Gamma dV (Simpson's rule),

@@ -3,7 +3,7 @@
 /// \file
 /// One particle's interpolation stencil: the 1-D weights and gradients of each axis, computed
 /// once per step and shared by every transfer (P2G, G2P, velocity gradient). N-D weights are
-/// their tensor product (PHYSICS.md section 2).
+/// their tensor product (docs/physics.md section 2).
 
 #include "gimlet/core/grid.hpp"
 #include "gimlet/core/space.hpp"

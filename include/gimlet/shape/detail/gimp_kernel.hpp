@@ -18,7 +18,7 @@ inline constexpr int gimp_stencil = 3;
 /// The GIMP weight `w` of a node at signed distance `r = x_p - x_i` (cell units) from a particle
 /// of half-width `l`, and `dw = dS/dr`.
 ///
-/// PHYSICS.md section 2 states it in branches of a = |r| (Bardenhagen & Kober 2004, the hat
+/// docs/physics.md section 2 states it in branches of a = |r| (Bardenhagen & Kober 2004, the hat
 /// averaged over the particle's domain; Wallstedt & Guilkey 2008 for the piecewise form):
 /// 1 - (a² + l²)/(2l) for a < l; 1 - a for l <= a < 1 - l; (1 + l - a)²/(4l) for
 /// 1 - l <= a < 1 + l; 0 beyond. Here it is one expression, so the hot loop has no
