@@ -129,28 +129,26 @@ set_tests_properties(package.install PROPERTIES
     LABELS package
     FIXTURES_SETUP gimlet_installed)
 
-add_test(NAME package.consume
-         COMMAND "${CMAKE_CTEST_COMMAND}"
-                 --build-and-test "${CMAKE_CURRENT_SOURCE_DIR}/package" "${GIMLET_PACKAGE_BUILD}"
-                 --build-generator "${CMAKE_GENERATOR}"
-                 --build-makeprogram "${CMAKE_MAKE_PROGRAM}"
-                 ${_gimlet_consumer_config}
-                 --build-options ${_gimlet_consumer_options}
-                 --test-command gimlet_package_consumer)
-set_tests_properties(package.consume PROPERTIES
-    LABELS package
-    FIXTURES_REQUIRED gimlet_installed)
+# A project built against the installed copy with ctest --build-and-test, then run.
+function(gimlet_package_test name source binary)
+    add_test(NAME "${name}"
+             COMMAND "${CMAKE_CTEST_COMMAND}"
+                     --build-and-test "${source}" "${binary}"
+                     --build-generator "${CMAKE_GENERATOR}"
+                     --build-makeprogram "${CMAKE_MAKE_PROGRAM}"
+                     ${_gimlet_consumer_config}
+                     --build-options ${_gimlet_consumer_options}
+                     --test-command ${ARGN})
+    set_tests_properties("${name}" PROPERTIES
+        LABELS package
+        FIXTURES_REQUIRED gimlet_installed)
+endfunction()
+
+gimlet_package_test(package.consume "${CMAKE_CURRENT_SOURCE_DIR}/package" "${GIMLET_PACKAGE_BUILD}"
+                    gimlet_package_consumer)
 
 # The custom_material tutorial stands alone: built on its own against the installed package, as a
 # user who copies its folder out of the tree would (docs/concepts.md points to it).
-add_test(NAME package.tutorial
-         COMMAND "${CMAKE_CTEST_COMMAND}"
-                 --build-and-test "${PROJECT_SOURCE_DIR}/examples/custom_material" "${CMAKE_BINARY_DIR}/package-tutorial"
-                 --build-generator "${CMAKE_GENERATOR}"
-                 --build-makeprogram "${CMAKE_MAKE_PROGRAM}"
-                 ${_gimlet_consumer_config}
-                 --build-options ${_gimlet_consumer_options}
-                 --test-command custom_material --output "${CMAKE_BINARY_DIR}/package-tutorial/out")
-set_tests_properties(package.tutorial PROPERTIES
-    LABELS package
-    FIXTURES_REQUIRED gimlet_installed)
+gimlet_package_test(package.tutorial "${PROJECT_SOURCE_DIR}/examples/custom_material"
+                    "${CMAKE_BINARY_DIR}/package-tutorial"
+                    custom_material --output "${CMAKE_BINARY_DIR}/package-tutorial/out")
