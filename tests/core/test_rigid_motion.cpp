@@ -31,6 +31,7 @@ void check_translation() {
     gs.lower = S::vector::Zero();
     gs.upper = S::vector::Constant(0.8);
     gs.cell = 0.1;
+    gs.bc.fill(gimlet::boundary::periodic);  // a translation that wraps round the periodic box
     gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
     const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
     const auto v0 = vec<S>(3.0, -2.0, 1.0);

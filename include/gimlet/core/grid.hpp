@@ -32,7 +32,17 @@ struct grid_spec {
     typename S::vector lower = S::vector::Zero();
     typename S::vector upper = S::vector::Ones();
     real cell = real(0.1);
-    std::array<boundary, S::dim> bc{};  ///< defaults to periodic on every axis
+    /// Boundary per axis. Defaults to `free` on every axis: a body that reaches the end of the
+    /// grid stops the run with an error naming the particle, rather than wrapping round to the
+    /// other side (ask for `periodic` where that is meant).
+    std::array<boundary, S::dim> bc = all_free();
+
+private:
+    static constexpr std::array<boundary, S::dim> all_free() {
+        std::array<boundary, S::dim> b{};
+        b.fill(boundary::free);
+        return b;
+    }
 };
 
 namespace detail {

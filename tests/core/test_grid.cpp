@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// core/grid.hpp: the default boundaries, and what they do to a body that reaches the grid's end.
+#include <gimlet/gimlet.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+using Catch::Matchers::Contains;
+
+TEST_CASE("grid: the boundaries default to free, and a body reaching the end stops the run", "[core]") {
+    using S = gimlet::space<2>;
+    gimlet::grid_spec<S> gs;
+    for (const auto b : gs.bc) CHECK(b == gimlet::boundary::free);
+    CHECK(gimlet::grid_spec<gimlet::space<3>>{}.bc[2] == gimlet::boundary::free);
+    // A block flying at the grid's right end: with the default it is not wrapped round to the
+    // left side (a periodic axis would do that silently); the particle that leaves is named.
+    gs.upper = S::vector(10e-3, 4e-3);
+    gs.cell = 1e-3;
+    gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
+    sc.add_body(gimlet::scene::box<S>(S::vector(6e-3, 1e-3), S::vector(9e-3, 3e-3)),
+                gimlet::make_elastic_material(1900.0, 10e9, 0.3), S::vector(500.0, 0.0), 2, "block");
+    gimlet::solver_options<S> opt;
+    opt.threads = 1;
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(sc, opt);
+    std::string message;
+    try {
+        sol.run_until(10e-6);  // 5 mm of travel
+    } catch (const gimlet::numerical_error& e) {
+        message = e.what();
+    }
+    CHECK_THAT(message, Contains("particle") && Contains("left the grid through a non-periodic boundary"));
+}
