@@ -302,12 +302,23 @@ int run(const settings& s, const run_files& io) {
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
     std::printf("  %llu steps in %.1f s\n", static_cast<unsigned long long>(sol.steps()), wall);
-    std::printf("  D_max %.3f mm at %.2f us; secondary impact at %.2f us\n", sum.D_max * 1e3, us(sum.t_D_max),
-                us(sum.secondary_impact));
-    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after it %.1f K, at the end "
+    // A time or value the run never reached reads "none" here (summary.csv keeps -1 there).
+    auto at_us = [](double t, const char* fmt) {
+        char text[64] = "none";
+        if (t >= 0) std::snprintf(text, sizeof text, fmt, t * 1e6);
+        return std::string(text);
+    };
+    auto kelvin = [](double t) {
+        char text[64] = "none";
+        if (t >= 0) std::snprintf(text, sizeof text, "%.1f K", t);
+        return std::string(text);
+    };
+    std::printf("  D_max %.3f mm at %s; secondary impact at %s\n", sum.D_max * 1e3, at_us(sum.t_D_max, "%.2f us").c_str(),
+                at_us(sum.secondary_impact, "%.2f us").c_str());
+    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after it %s, at the end "
                 "%.1f K (hottest particle %.1f K)\n",
-                sum.max_wall_relative_velocity, sum.max_hot_spot, sum.settled_hot_spot, sum.final_hot_spot,
-                sum.max_temperature);
+                sum.max_wall_relative_velocity, sum.max_hot_spot, kelvin(sum.settled_hot_spot).c_str(),
+                sum.final_hot_spot, sum.max_temperature);
     std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
     // The silent numerical guards that acted (solver::health): counts, and the first of each.
     std::printf("  health events: %llu\n", static_cast<unsigned long long>(sol.health().total()));
