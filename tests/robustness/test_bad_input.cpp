@@ -285,6 +285,7 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
          "finite and > 0"},
         {"observer steps", [] { gimlet::diagnostics::every_steps o(0, [](const auto&) {}); }, "observer step interval",
          ">= 1"},
+        {"hook steps", [] { gimlet::diagnostics::between_steps o(0, [](auto&) {}); }, "hook step interval", ">= 1"},
     });
 }
 

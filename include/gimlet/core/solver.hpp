@@ -180,7 +180,8 @@ public:
         return dt;
     }
 
-    /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/).
+    /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/):
+    /// read-only observers (every_time, every_steps) and writable hooks (between_steps).
     template <class... Observers>
     void run_until(real t_end, Observers&... observers) {
         require(std::isfinite(double(t_end)) && t_end >= time_, "end time (s)", double(t_end),
@@ -188,6 +189,7 @@ public:
         check_pending();
         (observers.maybe_call(*this), ...);
         while (time_ < t_end) {
+            check_pending();  // what a hook (diagnostics::between_steps) changed, before dt reads it
             const real dt = std::min(stable_time_step(), t_end - time_);
             advance(dt);
             if (t_end - time_ < real(1e-12) * t_end) time_ = t_end;  // no sliver step at the end

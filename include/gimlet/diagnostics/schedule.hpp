@@ -40,25 +40,55 @@ private:
     double next_ = 0;
 };
 
-/// Calls `f(solver)` at step 0 and every `n` steps.
-template <class F>
-class every_steps {
+namespace detail {
+// Due at step 0 and every n steps, once per step.
+class step_interval {
 public:
-    every_steps(std::uint64_t n, F f) : n_(n), f_(std::move(f)) {
-        require(n >= 1, "observer step interval", double(n), ">= 1");
-    }
-    template <class Solver>
-    void maybe_call(const Solver& s) {
-        if (s.steps() % n_ == 0 && s.steps() != last_) {
-            last_ = s.steps();
-            f_(s);
-        }
+    step_interval(std::uint64_t n, const char* name) : n_(n) { require(n >= 1, name, double(n), ">= 1"); }
+    [[nodiscard]] bool due(std::uint64_t steps) {
+        if (steps % n_ != 0 || steps == last_) return false;
+        last_ = steps;
+        return true;
     }
 
 private:
     std::uint64_t n_;
-    F f_;
     std::uint64_t last_ = std::numeric_limits<std::uint64_t>::max();
+};
+}  // namespace detail
+
+/// Calls `f(solver)` at step 0 and every `n` steps.
+template <class F>
+class every_steps {
+public:
+    every_steps(std::uint64_t n, F f) : when_(n, "observer step interval"), f_(std::move(f)) {}
+    template <class Solver>
+    void maybe_call(const Solver& s) {
+        if (when_.due(s.steps())) f_(s);
+    }
+
+private:
+    detail::step_interval when_;
+    F f_;
+};
+
+/// A user hook between steps: calls `f(solver)` with the solver **writable** at step 0 and every
+/// `n` steps, so a user field can be updated (or particles changed) without re-writing
+/// run_until. What it changes through `solver.particles()` is checked before the next step
+/// uses it, and a bad value is blamed on its particle. The observers above get the solver read
+/// only.
+template <class F>
+class between_steps {
+public:
+    between_steps(std::uint64_t n, F f) : when_(n, "hook step interval"), f_(std::move(f)) {}
+    template <class Solver>
+    void maybe_call(Solver& s) {
+        if (when_.due(s.steps())) f_(s);
+    }
+
+private:
+    detail::step_interval when_;
+    F f_;
 };
 
 }  // namespace gimlet::diagnostics
