@@ -11,7 +11,7 @@ namespace gimlet::eos {
 
 /// An EOS policy gives the pressure of a material point and its tangent bulk modulus.
 ///
-/// - `fields`: field_list of the per-particle state it reads or keeps.
+/// - `required_fields`: field_list of the per-particle state it reads or keeps.
 /// - `pressure(step, p)`: the pressure (Pa, compression positive) at the end of the step, from
 ///   `step.J`, `step.density` and the particle's fields. Must throw gimlet::numerical_error
 ///   (naming the particle and step) rather than return a non-finite value.

@@ -11,7 +11,7 @@ namespace gimlet::strength {
 
 /// A strength policy advances the deviatoric Cauchy stress of one material point.
 ///
-/// - `fields`: field_list of the per-particle state it keeps (e.g. plastic strain).
+/// - `required_fields`: field_list of the per-particle state it keeps (e.g. plastic strain).
 /// - `update(step, s, p)`: advance the 3x3 deviatoric stress `s` (in/out, traceless) over
 ///   `step.dt` given the rates `step.D`, `step.W`; return the energy dissipated in the step per
 ///   unit mass (J/kg; plastic work, 0 for elastic laws). The solver adds the pressure from the

@@ -13,7 +13,7 @@ namespace gimlet::thermal {
 ///
 /// - `enabled`: false for thermal::none; the solver then stores no temperature and runs no
 ///   thermal code (removed with `if constexpr`).
-/// - `fields`: field_list of its per-particle state (the temperature field for any real one).
+/// - `required_fields`: field_list of its per-particle state (the temperature field for any real one).
 /// - `initialize(p)`: set the initial state of a new particle (e.g. T = T0).
 /// - `update(step, dissipated, p)`: advance the state over the step; `dissipated` is the
 ///   energy per unit mass the strength law dissipated in it (plastic work, J/kg).

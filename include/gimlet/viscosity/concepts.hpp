@@ -13,7 +13,7 @@ namespace gimlet::viscosity {
 ///
 /// - `enabled`: false for viscosity::none. The solver removes every viscosity step with
 ///   `if constexpr` when it is false, so an inactive policy costs nothing.
-/// - `fields`: field_list of the per-particle state it needs.
+/// - `required_fields`: field_list of the per-particle state it needs.
 /// - `pressure(step, sound_speed, p)`: the viscous pressure q >= 0 (Pa), added to the EOS
 ///   pressure: sigma = s - (P + q) I. `step.length` is the grid cell size.
 /// - `signal_speed(sound_speed, cell, p)`: the speed (m/s, >= sound_speed) that sets particle p's
