@@ -62,12 +62,11 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
     os << '\n';
 }
 
-// Particle map for the PNG figures: position, pressure, temperature (single precision is
-// plenty for a picture).
+// Particle map for the PNG figures: position, pressure, temperature.
 template <class Solver>
 void write_map(const std::filesystem::path& file, const Solver& sol) {
     std::ofstream os(file);
-    os.precision(7);
+    gimlet::io::exact_numbers(os);
     os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
     const auto& ps = sol.particles();
     for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -214,8 +213,9 @@ int run(const settings& s, const run_files& io) {
         times.open(out / "snapshots" / "times.csv", std::ios::app);
         pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
     }
-    series.precision(17);  // exact: a resumed run's rows match the uninterrupted run's
-    times.precision(17);
+    // Exact numbers: a resumed run's rows match the uninterrupted run's.
+    gimlet::io::exact_numbers(series);
+    gimlet::io::exact_numbers(times);
     if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
     std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, cavity radius %.2f mm, cell %.3f mm, %s contact, "
                 "%zu particles, %s %.2f us to %.2f us\n",
@@ -280,6 +280,7 @@ int run(const settings& s, const run_files& io) {
     if (!series || !times) throw std::runtime_error("could not write the series in " + out.string());
 
     std::ofstream su(out / "summary.csv");
+    gimlet::io::exact_numbers(su);
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"

@@ -37,6 +37,7 @@ int main(int argc, char** argv) try {
     };
 
     std::ofstream summary(out / "summary.csv");
+    gimlet::io::exact_numbers(summary);
     summary << "policy,interface_peak_over_plateau,particle_peak_over_plateau,interface_peak_Pa,plateau_Pa,"
                "velocity_m_s,cell_mm,time_us\n";
     std::printf("contact_validation: HMX blocks at +-%.0f m/s, cell %.3f mm, t = %.2f us\n", s.velocity, s.cell * 1e3,
@@ -45,6 +46,7 @@ int main(int argc, char** argv) try {
                 "plateau (Pa)");
     for (const auto& r : results) {
         std::ofstream prof(out / ("profile_" + r.policy + ".csv"));
+        gimlet::io::exact_numbers(prof);
         prof << "y_mm,pressure_Pa\n";
         for (const auto& [y, p] : r.profile) prof << (y + r.interface_y) * 1e3 << ',' << p << '\n';
         summary << r.policy << ',' << r.peak_over_plateau << ',' << r.particle_peak_over_plateau << ','

@@ -117,6 +117,7 @@ int main(int argc, char** argv) try {
     static_assert(!decltype(elastic)::store_type::has<my::dissipated_energy>);
 
     std::ofstream csv(out / "energy.csv");
+    gimlet::io::exact_numbers(csv);  // every number reads back exactly
     csv << "time_s,kinetic_elastic_J,kinetic_maxwell_J,dissipated_maxwell_J\n";
     auto dissipated = [](const auto& s) {
         double w = 0;

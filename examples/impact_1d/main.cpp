@@ -52,7 +52,7 @@ int main(int argc, char** argv) try {
            "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta";
     for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
     csv << '\n';
-    csv.precision(10);
+    gimlet::io::exact_numbers(csv);
     csv << s.velocity << ',' << r.plateau_pressure << ',' << r.plateau_sigma_yy << ',' << r.shock_speed << ','
         << r.energy_error << ',' << r.rh.pressure << ',' << r.rh.sigma_yy << ',' << r.rh.shock_speed << ','
         << 2740.0 + 2.6 * s.velocity << ',' << (r.rh.two_wave ? 1 : 0) << ',' << r.plateau_temperature << ','

@@ -34,6 +34,7 @@ int main(int argc, char** argv) try {
     gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(scene);
 
     std::ofstream csv(out / "energy.csv");
+    gimlet::io::exact_numbers(csv);
     csv << "time_s,mass_kg,momentum_x,momentum_y,kinetic_J,internal_J,total_J\n";
     gimlet::diagnostics::conservation_sample<2> first{}, last{};
     bool have_first = false;

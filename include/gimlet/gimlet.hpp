@@ -29,6 +29,7 @@
 #include "gimlet/eos/linear.hpp"
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/io/checkpoint.hpp"
+#include "gimlet/io/csv.hpp"
 #include "gimlet/io/pvd.hpp"
 #include "gimlet/io/vtk.hpp"
 #include "gimlet/materials/hmx.hpp"
