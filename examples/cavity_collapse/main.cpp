@@ -123,7 +123,10 @@ struct run_files {
 // resumed run rewrites what the interrupted one wrote after its checkpoint.
 void keep_lines(const std::filesystem::path& file, std::size_t keep) {
     std::ifstream in(file);
-    if (!in) throw std::runtime_error("cannot read " + file.string() + " to continue it after a restart");
+    if (!in)
+        throw std::runtime_error("cannot read " + file.string() +
+                                 " to continue it after a restart: --output must name the folder of the run that "
+                                 "wrote the checkpoint (it holds series.csv and snapshots/), not a fresh one");
     std::string text, line;
     for (std::size_t n = 0; n < keep && std::getline(in, line); ++n) text += line + '\n';
     in.close();

@@ -164,6 +164,9 @@ TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the unin
     for (std::size_t i = 0; i < sa.columns.size(); ++i)
         if (sa.columns[i] != "wall_s") CHECK(sa.rows[0][i] == sb.rows[0][i]);
 
+    // A restart into a fresh folder is refused, saying which folder to give.
+    CHECK(run(coarse + " --end-us 20 --output \"" + (dir / "fresh").string() + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(log.find("--output must name the folder of the run that wrote the checkpoint") != std::string::npos);
     // A restart with another flag than the original run's is refused, naming it.
     CHECK(run(coarse + " --velocity 250 --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
     CHECK(log.find("velocity_m_s") != std::string::npos);
