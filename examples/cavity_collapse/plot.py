@@ -70,32 +70,54 @@ for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))
     fig.savefig(out / f"map_{int(i):04d}.png", dpi=100)
     plt.close(fig)
 
-# All snapshots side by side, one row per quantity, like the paper's snapshot figures: the whole
-# pair of blocks in pressure, the upper block in temperature (the paper shows only that one).
+# All snapshots in one figure per quantity, like the paper's snapshot figures: the whole pair of
+# blocks in pressure, the upper block in temperature (the paper shows only that one). The panels
+# form a grid whose shape keeps the figure near 4:3 with few empty panels, each titled with its
+# time, and share one colour scale and one colour bar.
 if len(times.get("index", [])) >= 2:
+    import math
     for key, label, cmap, lo, name, upper_only in (
             ("pressure_MPa", "pressure (MPa)", "viridis", None, "maps_pressure.png", False),
             ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True)):
         n = len(times["index"])
-        fig, axes = plt.subplots(1, n, figsize=(1.55 * n + 1.0, 3.6 if not upper_only else 2.4), sharey=True,
-                                 squeeze=False)
         maps = [read(snaps / f"map_{int(i):04d}.csv") for i in times["index"]]
         for m in maps:
             if upper_only:
                 keep = [j for j, b in enumerate(m["body"]) if b == 1]
                 for k in m:
                     m[k] = [m[k][j] for j in keep]
+        # Panel height over width, from the particles' extent.
+        ratio = max((max(m["y_mm"]) - min(m["y_mm"])) / max(max(m["x_mm"]) - min(m["x_mm"]), 1e-9) for m in maps)
+        best = None
+        for cols in range(1, n + 1):
+            rows = math.ceil(n / cols)
+            if rows * cols - n >= cols:
+                continue  # a whole empty row
+            miss = abs(rows * ratio / cols - 0.75) + 0.1 * (rows * cols - n)  # empty panels cost too
+            if best is None or miss < best[0]:
+                best = (miss, rows, cols)
+        _, rows, cols = best
+        width = 2.4  # inches per panel
+        fig, axes = plt.subplots(rows, cols, figsize=(width * cols + 1.0, width * ratio * rows + 0.3 * rows + 0.3),
+                                 squeeze=False, sharex=True, sharey=True, layout="constrained")
         every = sorted(v for m in maps for v in m[key])
         hi = every[int(0.999 * (len(every) - 1))]
-        for a, m, tc in zip(axes[0], maps, times["time_after_contact_us"]):
+        for k, a in enumerate(axes.ravel()):
+            if k >= n:
+                a.axis("off")
+                continue
+            m, tc = maps[k], times["time_after_contact_us"][k]
             span = max(m["y_mm"]) - min(m["y_mm"])
-            height = 3.0 if not upper_only else 1.8
-            size = (height * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
+            size = (width * ratio * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
             sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
                            linewidths=0, rasterized=True)
             a.set_aspect("equal")
-            a.set_title(f"{tc:.0f} us", fontsize=8)
-            a.tick_params(labelsize=6)
-        fig.colorbar(sc, ax=list(axes[0]), label=label, shrink=0.8)
+            a.set_title(f"t = {tc:.1f} us after contact", fontsize=9)
+            a.tick_params(labelsize=7)
+        for a in axes[:, 0]:
+            a.set_ylabel("y (mm)", fontsize=8)
+        for a in axes[-1, :]:
+            a.set_xlabel("x (mm)", fontsize=8)
+        fig.colorbar(sc, ax=axes.ravel().tolist(), label=label, shrink=0.9, fraction=0.04, pad=0.01)
         fig.savefig(out / name, dpi=90)
         plt.close(fig)
