@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Two elastic disks collide and rebound (Sulsky, Chen & Schreyer 1994, section 5.1): the
-// classic first test of an MPM code. Writes the conserved quantities over time to
+// Two elastic disks collide and rebound: the classic first test of an MPM code, after Sulsky,
+// Chen & Schreyer (1994, section 5.1). Their material, disk radius (0.2), speed and cell, but the
+// disks centred at 0.25 and 0.75 of the unit square, where theirs sit at 0.2 and 0.8 and so
+// touch its walls: here nothing meets a wall before the disks part. Writes the conserved quantities over time to
 // OUTPUT/energy.csv and prints a summary.
 //
 //   sulsky_disks [--cell 0.05] [--end-time 3.0] [--velocity 0.1] [--output results/sulsky_disks]
@@ -28,7 +30,7 @@ int main(int argc, char** argv) try {
     gs.cell = cell;
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
     gimlet::scene::scene<S, gimlet::elastic_material> scene(gs);
-    const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);  // Sulsky 1994's values
+    const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);  // Sulsky et al.'s values
     scene.add_body(gimlet::scene::ball<S>(S::vector(0.25, 0.25), 0.2), mat, S::vector(speed, speed), 2, "lower disk");
     scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-speed, -speed), 2, "upper disk");
     gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(scene);

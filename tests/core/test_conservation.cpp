@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Sulsky, Chen & Schreyer (1994), section 5.1: two elastic disks collide and rebound.
+// Two elastic disks collide and rebound, after Sulsky, Chen & Schreyer (1994), section 5.1.
 #include <gimlet/gimlet.hpp>
 
 #include <catch2/catch.hpp>
@@ -13,9 +13,10 @@ namespace {
 using shapes = std::tuple<gimlet::shape::linear, gimlet::shape::ugimp, gimlet::shape::cpgimp,
                           gimlet::shape::bspline_quadratic, gimlet::shape::bspline_cubic>;
 
-// Sulsky 1994's set-up: unit square, disks of radius 0.2 centred at (0.25, 0.25) and
-// (0.75, 0.75), E = 1000 Pa, nu = 0.3, rho = 1000 kg/m^3, v = +-(0.1, 0.1) m/s, cell 0.05,
-// 2x2 particles per cell. They touch at t ~ 0.77 s and separate by t ~ 2 s; we stop at 2.4 s,
+// After Sulsky et al.'s set-up: unit square, disks of radius 0.2 centred at (0.25, 0.25) and
+// (0.75, 0.75) (theirs sit at 0.2 and 0.8 and so touch the walls; these clear them),
+// E = 1000 Pa, nu = 0.3, rho = 1000 kg/m^3, v = +-(0.1, 0.1) m/s, cell 0.05, 2x2 particles per
+// cell. They touch at t ~ 0.77 s and separate by t ~ 2 s; we stop at 2.4 s,
 // before either reaches the walls.
 template <class Shape>
 std::vector<gimlet::diagnostics::conservation_sample<2>> collide(gimlet::update_scheme scheme) {
