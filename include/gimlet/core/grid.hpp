@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,20 @@ enum class boundary {
     slip,      ///< rigid frictionless wall: normal velocity zero at and beyond the boundary nodes
     fixed,     ///< rigid sticking wall: all velocity components zero at and beyond the boundary
     free,      ///< no condition; the grid simply ends (a particle reaching the end stops the run)
+    wall,      ///< rigid one-sided wall: resists penetration only, so a body can rebound and leave;
+               ///< frictionless unless grid_spec::wall_friction gives mu > 0
+};
+
+/// How a call to grid::apply_walls treats a one-sided `wall` (slip and fixed walls always act).
+/// A step's decisions hold for its later passes, as contact's do: a node the wall stopped while
+/// the forces acted stays stopped for the strain of that step, and a node it left free stays
+/// free, or the stress would see other velocities than the momentum and the rebound would gain
+/// energy (measured: +18 % for an elastic bar under MUSL).
+enum class wall_pass {
+    decide,  ///< stop a node moving into the wall and remember it for the step (adds to earlier marks)
+    keep,    ///< stop the nodes this step marked, whichever way they move now; leave the rest
+    trial,   ///< stop a node moving into the wall, remembering nothing
+    none,    ///< leave every one-sided wall alone
 };
 
 /// Geometry of the domain: [lower, upper] per axis, cell size h, boundary per axis.
@@ -36,6 +51,9 @@ struct grid_spec {
     /// grid stops the run with an error naming the particle, rather than wrapping round to the
     /// other side (ask for `periodic` where that is meant).
     std::array<boundary, S::dim> bc = all_free();
+    /// Coulomb friction mu >= 0 of a `wall` axis: where the wall stops a node's approach by dv_n,
+    /// it takes at most mu dv_n off the tangential velocity (0: frictionless).
+    std::array<double, S::dim> wall_friction{};
 
 private:
     static constexpr std::array<boundary, S::dim> all_free() {
@@ -79,6 +97,8 @@ public:
                     "a whole number >= 1 (make the extent a multiple of the cell size)");
             cells_[d] = static_cast<int>(nr);
             periodic_[d] = spec.bc[d] == boundary::periodic;
+            require(std::isfinite(spec.wall_friction[d]) && spec.wall_friction[d] >= 0,
+                    "wall friction mu along " + ax, spec.wall_friction[d], "finite and >= 0");
             if (periodic_[d]) {
                 require(cells_[d] >= ghost, "periodic grid cells along " + ax, cells_[d],
                         ">= " + std::to_string(ghost) + " (the shape stencil width)");
@@ -106,6 +126,7 @@ public:
         force.assign(total, vector::Zero());
         velocity.assign(total, vector::Zero());
         velocity_old.assign(total, vector::Zero());
+        stopped_.assign(total, std::uint8_t(0));
     }
     [[nodiscard]] std::size_t field_count() const noexcept { return fields_; }
     /// Entries of every nodal array: field_count() * size().
@@ -189,6 +210,7 @@ public:
 
     /// Zero the nodal fields before a particle-to-grid transfer.
     void clear() {
+        std::fill(stopped_.begin(), stopped_.end(), std::uint8_t(0));
         std::fill(mass.begin(), mass.end(), real(0));
         std::fill(momentum.begin(), momentum.end(), vector::Zero());
         std::fill(force.begin(), force.end(), vector::Zero());
@@ -196,24 +218,37 @@ public:
 
     /// Impose the wall conditions on nodal velocities (every field): on a slip or fixed axis, nodes at
     /// and beyond the boundary (k <= 0 or k >= N) lose the normal (slip) or every (fixed)
-    /// component. Ghost nodes beyond a wall belong to the rigid wall.
+    /// component; on a `wall` axis they lose only a normal component that moves into the wall
+    /// (with friction, the tangential velocity loses at most mu times that), or nothing when
+    /// `one_sided` is false. Ghost nodes beyond a wall belong to the rigid wall.
     ///
     /// Only the planes of nodes at and beyond each wall are visited (ghost + 1 per side), so the
     /// cost scales with the boundary, not with the grid.
-    void apply_walls(std::vector<vector>& v) const {
+    void apply_walls(std::vector<vector>& v, wall_pass pass = wall_pass::decide) {
+        const bool one_sided = pass != wall_pass::none;
         for (int d = 0; d < dim; ++d) {
             const boundary b = spec_.bc[d];
-            if (b != boundary::slip && b != boundary::fixed) continue;
+            if (b != boundary::slip && b != boundary::fixed && !(b == boundary::wall && one_sided)) continue;
+            const real mu = real(spec_.wall_friction[d]);
             // Storage index s holds node k = s - offset_d; k <= 0 and k >= N are wall nodes.
             const int low_last = offset_[d], high_first = offset_[d] + cells_[d];
-            for (int s = 0; s < nodes_[d]; s = s == low_last ? high_first : s + 1)
+            for (int s = 0; s < nodes_[d]; s = s == low_last ? high_first : s + 1) {
+                const real into = s <= low_last ? real(-1) : real(1);  // the wall's side, along +d
                 for_each_in_plane(d, s, [&](std::size_t n) {
                     for (std::size_t f = 0; f < fields_; ++f) {
-                        vector& e = v[f * size_ + n];
+                        const std::size_t i = f * size_ + n;
+                        vector& e = v[i];
                         if (b == boundary::slip) e[d] = real(0);
-                        else e.setZero();
+                        else if (b == boundary::fixed) e.setZero();
+                        else if (pass == wall_pass::keep) {
+                            if (stopped_[i] & (1u << d)) stop_at_wall(e, d, mu);
+                        } else if (e[d] * into > 0 || (pass == wall_pass::decide && (stopped_[i] & (1u << d)))) {
+                            stop_at_wall(e, d, mu);
+                            if (pass == wall_pass::decide) stopped_[i] |= std::uint8_t(1u << d);
+                        }
                     }
                 });
+            }
         }
     }
 
@@ -242,6 +277,16 @@ public:
     std::vector<vector> velocity_old;  ///< v_i^n = (mv)_i / m_i before the update (for FLIP)
 
 private:
+    // A node moving into a one-sided wall: its normal velocity stops; Coulomb friction takes at
+    // most mu times that off its tangential velocity.
+    static void stop_at_wall(vector& e, int d, real mu) {
+        const real stopped = std::abs(e[d]);
+        e[d] = real(0);
+        if (!(mu > 0)) return;
+        const real slip = e.norm();
+        if (slip > 0) e *= std::max(real(0), real(1) - mu * stopped / slip);
+    }
+
     // f(flat node index) for every node whose storage index along axis d is s.
     template <class F>
     void for_each_in_plane(int d, int s, F&& f) const {
@@ -257,6 +302,7 @@ private:
     std::array<bool, dim> periodic_{};
     std::size_t size_ = 0;
     std::size_t fields_ = 1;
+    std::vector<std::uint8_t> stopped_;  // per node entry: the axes whose one-sided wall stopped it this step
     real inv_cell_ = 1;
 };
 

@@ -163,7 +163,7 @@ public:
         // Which components of a node's force the walls leave free (1) or take (0): the projection
         // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
         wall_free_.assign(grid_.entries(), vector::Ones());
-        grid_.apply_walls(wall_free_);
+        grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
         set_up_slabs();
     }
 
@@ -416,7 +416,7 @@ private:
             // MUSL: the updated particle momenta mapped back to the grid (docs/physics.md section 1,
             // step 4), scattered by grid_to_particles.
             nodal_velocity(grid_.velocity);
-            grid_.apply_walls(grid_.velocity);
+            grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
             lap(timings_.grid_to_particle);
             if constexpr (multi_field) resolve_contact(contact_pass::remap);
             lap(timings_.contact);
@@ -887,7 +887,7 @@ private:
                 trial_velocity_[e] = grid_.mass[e] > mass_cutoff_
                                          ? vector(grid_.velocity_old[e] + dt_ * grid_.force[e] / grid_.mass[e])
                                          : vector::Zero();
-            grid_.apply_walls(trial_velocity_);
+            grid_.apply_walls(trial_velocity_, wall_pass::trial);
         }
         for (std::size_t s = 0; s < shared_.size(); ++s) {
             if (pass == contact_pass::keep && engaged_[s] == 0) continue;
@@ -936,7 +936,7 @@ private:
                 grid_.velocity[e] = p_[j] / m_[j];
             }
         }
-        grid_.apply_walls(grid_.velocity);
+        grid_.apply_walls(grid_.velocity, pass == contact_pass::remap ? wall_pass::keep : wall_pass::decide);
     }
 
     // The guards of the time step this step takes (stable_time_step), into health_.
