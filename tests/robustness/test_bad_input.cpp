@@ -147,6 +147,18 @@ TEST_CASE("bad material constants are refused, naming the constant and its range
              hmx_scene sc(unit_grid());
              sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
          }, "EOS reference density rho0 (kg/m^3) = 1800", "equal to the material density rho0 = 1900 kg/m^3"},
+        {"thermal constants = the EOS's", [] {
+             hmx m = gimlet::materials::make_hmx();
+             m.thermal = gimlet::thermal::isentrope_temperature(1900, 2740, 2.6, 1.3, 1250, 300);  // another Gamma
+             hmx_scene sc(unit_grid());
+             sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
+         }, "thermal Grueneisen parameter Gamma = 1.3", "equal to the EOS's 1.1"},
+        {"thermal constants = the EOS's", [] {
+             hmx m = gimlet::materials::make_hmx();
+             m.thermal = gimlet::thermal::isentrope_temperature(1900, 2800, 2.6, 1.1, 1250, 300);  // another c0
+             hmx_scene sc(unit_grid());
+             sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
+         }, "thermal bulk sound speed c0 (m/s) = 2800", "equal to the EOS's 2740"},
         {"thermal rho0", [] { heating h(-1, 2740, 2.6, 1.1, 1250, 300); }, "thermal reference density rho0 (kg/m^3)",
          "finite and > 0"},
         {"thermal c0", [] { heating h(1900, 0, 2.6, 1.1, 1250, 300); }, "thermal bulk sound speed c0 (m/s)", "finite and > 0"},

@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <string>
 
 namespace gimlet {
 
@@ -41,9 +42,11 @@ struct material {
     T thermal{};
     V viscosity{};
 
-    /// Throws invalid_parameter for a bad density, or an EOS whose own reference density
-    /// (`eos.density0()`, e.g. eos::mie_gruneisen) differs from it; the policies validate their
-    /// other parameters themselves.
+    /// Throws invalid_parameter for a bad density, an EOS whose own reference density
+    /// (`eos.density0()`, e.g. eos::mie_gruneisen) differs from it, or a thermal policy whose
+    /// copy of the EOS's constants (reference density, c0, s, Gamma, where both have them)
+    /// differs from the EOS's: a temperature on another EOS's isentrope or Hugoniot is silently
+    /// wrong. The policies validate their other parameters themselves.
     void validate() const {
         require_positive("density rho0 (kg/m^3)", density);
         if constexpr (requires { { eos.density0() } -> std::convertible_to<double>; }) {
@@ -51,6 +54,21 @@ struct material {
             require(std::abs(eos_density - density) <= 1e-9 * density, "EOS reference density rho0 (kg/m^3)",
                     eos_density, "equal to the material density rho0 = " + detail::to_text(density) + " kg/m^3");
         }
+        auto same = [](double theirs, double ours, const char* name) {
+            require(std::abs(theirs - ours) <= 1e-9 * std::abs(ours), std::string("thermal ") + name, theirs,
+                    "equal to the EOS's " + detail::to_text(ours));
+        };
+        if constexpr (requires { { thermal.density0() } -> std::convertible_to<double>; })
+            same(thermal.density0(), density, "reference density rho0 (kg/m^3)");
+        if constexpr (requires { { thermal.sound_speed() } -> std::convertible_to<double>;
+                                 { eos.sound_speed() } -> std::convertible_to<double>; })
+            same(thermal.sound_speed(), eos.sound_speed(), "bulk sound speed c0 (m/s)");
+        if constexpr (requires { { thermal.slope() } -> std::convertible_to<double>;
+                                 { eos.slope() } -> std::convertible_to<double>; })
+            same(thermal.slope(), eos.slope(), "Hugoniot slope s");
+        if constexpr (requires { { thermal.gruneisen() } -> std::convertible_to<double>;
+                                 { eos.gruneisen() } -> std::convertible_to<double>; })
+            same(thermal.gruneisen(), eos.gruneisen(), "Grueneisen parameter Gamma");
     }
 };
 

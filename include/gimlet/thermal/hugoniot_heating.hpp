@@ -76,6 +76,9 @@ public:
         return s_ * c0_ * c0_ * (v0_ - v) * (v0_ - v) / (cv_ * d * d * d);
     }
 
+    [[nodiscard]] double density0() const noexcept { return 1.0 / v0_; }
+    [[nodiscard]] double sound_speed() const noexcept { return c0_; }
+    [[nodiscard]] double slope() const noexcept { return s_; }
     [[nodiscard]] double specific_heat() const noexcept { return cv_; }
     [[nodiscard]] double initial_temperature() const noexcept { return t0_; }
     [[nodiscard]] double gruneisen() const noexcept { return gamma_; }

@@ -105,6 +105,9 @@ public:
         return hugoniot_pressure(j) + gamma_ * rho0_ / j * (reference_energy(j) - hugoniot_energy(j));
     }
 
+    [[nodiscard]] double density0() const noexcept { return rho0_; }
+    [[nodiscard]] double sound_speed() const noexcept { return c0_; }
+    [[nodiscard]] double slope() const noexcept { return s_; }
     [[nodiscard]] double specific_heat() const noexcept { return cv_; }
     [[nodiscard]] double initial_temperature() const noexcept { return t0_; }
     [[nodiscard]] double gruneisen() const noexcept { return gamma_; }
