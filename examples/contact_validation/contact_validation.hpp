@@ -36,6 +36,8 @@ struct result {
     double peak_over_plateau = 0;
     double particle_peak_over_plateau = 0;  // the same with the largest single-particle pressure
     double interface_y = 0;     // m: the interface (the centre of the gap; the impact is symmetric)
+    double max_eta = 0;         // the largest particle compression 1 - det F at the end
+    gimlet::health_events health;  // the silent guards that acted (solver::health)
 };
 
 // The particle profile averaged per grid cell. The two particle rows of a cell oscillate
@@ -115,6 +117,9 @@ result run(const settings& s, const std::string& name, const Contact& contact = 
     r.plateau = gimlet::diagnostics::mean_between(folded, 4 * h, std::max(8 * h, 0.5 * front));
     r.peak_over_plateau = r.interface_peak / r.plateau;
     r.particle_peak_over_plateau = particle_peak / r.plateau;
+    for (const auto& f : sol.particles().template column<gimlet::fields::deformation_gradient>())
+        r.max_eta = std::max(r.max_eta, 1.0 - double(f.determinant()));
+    r.health = sol.health();
     return r;
 }
 

@@ -39,7 +39,9 @@ int main(int argc, char** argv) try {
     std::ofstream summary(out / "summary.csv");
     gimlet::io::exact_numbers(summary);
     summary << "policy,interface_peak_over_plateau,particle_peak_over_plateau,interface_peak_Pa,plateau_Pa,"
-               "velocity_m_s,cell_mm,time_us\n";
+               "velocity_m_s,cell_mm,time_us,max_eta";
+    for (const char* name : gimlet::health_events::names) summary << ",events_" << name;
+    summary << '\n';
     std::printf("contact_validation: HMX blocks at +-%.0f m/s, cell %.3f mm, t = %.2f us\n", s.velocity, s.cell * 1e3,
                 s.time * 1e6);
     std::printf("  %-12s %12s %18s %14s %14s\n", "policy", "peak/plateau", "(particle values)", "peak (Pa)",
@@ -50,7 +52,14 @@ int main(int argc, char** argv) try {
         prof << "y_mm,pressure_Pa\n";
         for (const auto& [y, p] : r.profile) prof << (y + r.interface_y) * 1e3 << ',' << p << '\n';
         summary << r.policy << ',' << r.peak_over_plateau << ',' << r.particle_peak_over_plateau << ','
-                << r.interface_peak << ',' << r.plateau << ',' << s.velocity << ',' << s.cell * 1e3 << ',' << s.time * 1e6 << '\n';
+                << r.interface_peak << ',' << r.plateau << ',' << s.velocity << ',' << s.cell * 1e3 << ','
+                << s.time * 1e6 << ',' << r.max_eta;
+        for (const auto n : r.health.count) summary << ',' << n;
+        summary << '\n';
+        for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
+            if (r.health.count[k] > 0)
+                std::printf("  %s: health event %s: %llu, first %s\n", r.policy.c_str(), gimlet::health_events::names[k],
+                            static_cast<unsigned long long>(r.health.count[k]), r.health.first[k].c_str());
         std::printf("  %-12s %12.3f %18.3f %14.4e %14.4e\n", r.policy.c_str(), r.peak_over_plateau,
                     r.particle_peak_over_plateau, r.interface_peak, r.plateau);
     }
