@@ -99,6 +99,8 @@ public:
             periodic_[d] = spec.bc[d] == boundary::periodic;
             require(std::isfinite(spec.wall_friction[d]) && spec.wall_friction[d] >= 0,
                     "wall friction mu along " + ax, spec.wall_friction[d], "finite and >= 0");
+            require(spec.wall_friction[d] == 0 || spec.bc[d] == boundary::wall, "wall friction mu along " + ax,
+                    spec.wall_friction[d], "0 unless that axis is a one-sided wall (boundary::wall)");
             if (periodic_[d]) {
                 require(cells_[d] >= ghost, "periodic grid cells along " + ax, cells_[d],
                         ">= " + std::to_string(ghost) + " (the shape stencil width)");
@@ -219,8 +221,8 @@ public:
     /// Impose the wall conditions on nodal velocities (every field): on a slip or fixed axis, nodes at
     /// and beyond the boundary (k <= 0 or k >= N) lose the normal (slip) or every (fixed)
     /// component; on a `wall` axis they lose only a normal component that moves into the wall
-    /// (with friction, the tangential velocity loses at most mu times that), or nothing when
-    /// `one_sided` is false. Ghost nodes beyond a wall belong to the rigid wall.
+    /// (with friction, the tangential velocity loses at most mu times that), as `pass` says
+    /// (wall_pass). Ghost nodes beyond a wall belong to the rigid wall.
     ///
     /// Only the planes of nodes at and beyond each wall are visited (ghost + 1 per side), so the
     /// cost scales with the boundary, not with the grid.
@@ -241,9 +243,9 @@ public:
                         if (b == boundary::slip) e[d] = real(0);
                         else if (b == boundary::fixed) e.setZero();
                         else if (pass == wall_pass::keep) {
-                            if (stopped_[i] & (1u << d)) stop_at_wall(e, d, mu);
+                            if (stopped_[i] & (1u << d)) stop_at_wall(e, d, into, mu);
                         } else if (e[d] * into > 0 || (pass == wall_pass::decide && (stopped_[i] & (1u << d)))) {
-                            stop_at_wall(e, d, mu);
+                            stop_at_wall(e, d, into, mu);
                             if (pass == wall_pass::decide) stopped_[i] |= std::uint8_t(1u << d);
                         }
                     }
@@ -277,10 +279,11 @@ public:
     std::vector<vector> velocity_old;  ///< v_i^n = (mv)_i / m_i before the update (for FLIP)
 
 private:
-    // A node moving into a one-sided wall: its normal velocity stops; Coulomb friction takes at
-    // most mu times that off its tangential velocity.
-    static void stop_at_wall(vector& e, int d, real mu) {
-        const real stopped = std::abs(e[d]);
+    // A node at a one-sided wall: its normal velocity stops; Coulomb friction takes at most mu
+    // times the approach it stopped (none for a marked node now moving away) off its tangential
+    // velocity.
+    static void stop_at_wall(vector& e, int d, real into, real mu) {
+        const real stopped = std::max(real(0), e[d] * into);
         e[d] = real(0);
         if (!(mu > 0)) return;
         const real slip = e.norm();

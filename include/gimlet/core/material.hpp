@@ -54,12 +54,12 @@ struct material {
             require(std::abs(eos_density - density) <= 1e-9 * density, "EOS reference density rho0 (kg/m^3)",
                     eos_density, "equal to the material density rho0 = " + detail::to_text(density) + " kg/m^3");
         }
-        auto same = [](double theirs, double ours, const char* name) {
+        auto same = [](double theirs, double ours, const char* name, const char* whose = "the EOS's ") {
             require(std::abs(theirs - ours) <= 1e-9 * std::abs(ours), std::string("thermal ") + name, theirs,
-                    "equal to the EOS's " + detail::to_text(ours));
+                    "equal to " + std::string(whose) + detail::to_text(ours));
         };
         if constexpr (requires { { thermal.density0() } -> std::convertible_to<double>; })
-            same(thermal.density0(), density, "reference density rho0 (kg/m^3)");
+            same(thermal.density0(), density, "reference density rho0 (kg/m^3)", "the material density ");
         if constexpr (requires { { thermal.sound_speed() } -> std::convertible_to<double>;
                                  { eos.sound_speed() } -> std::convertible_to<double>; })
             same(thermal.sound_speed(), eos.sound_speed(), "bulk sound speed c0 (m/s)");

@@ -19,10 +19,12 @@ namespace detail {
 // exactly too. Integers, text and the stream's other settings are untouched.
 class exact_num_put : public std::num_put<char> {
 protected:
-    iter_type do_put(iter_type out, std::ios_base&, char_type, double v) const override {
+    iter_type do_put(iter_type out, std::ios_base& str, char_type, double v) const override {
+        str.width(0);  // a field width applies to one item, as the standard num_put has it (no padding here)
         const std::string t = exact_text(v);
         return std::copy(t.begin(), t.end(), out);
     }
+    // A long double is written as the double nearest to it (exact only for values a double holds).
     iter_type do_put(iter_type out, std::ios_base& str, char_type fill, long double v) const override {
         return do_put(out, str, fill, static_cast<double>(v));
     }

@@ -12,8 +12,9 @@ namespace gimlet::viscosity {
 
 /// \f[ q = \rho\, h \left( b_2^2\, h\, \dot\varepsilon_v^2 + b_1\, c\, |\dot\varepsilon_v| \right)
 ///     \quad \text{if } \dot\varepsilon_v = \mathrm{tr} D < 0, \qquad q = 0 \text{ otherwise} \f]
-/// (von Neumann & Richtmyer 1950 quadratic term, Landshoff 1955 linear term, in the form of the
-/// Abaqus/Explicit bulk viscosity; docs/equations.md), h the grid cell size (the length over
+/// (von Neumann & Richtmyer 1950 quadratic term, Landshoff 1955 linear term, with the terms of
+/// the Abaqus/Explicit bulk viscosity but both in compression only, where Abaqus keeps its linear
+/// term in expansion too; docs/equations.md), h the grid cell size (the length over
 /// which the grid resolves a shock), c the current longitudinal wave speed. It acts in
 /// compression only and adds to the EOS pressure; its work enters the specific internal energy
 /// through the stress power, so it heats the material. Defaults are Abaqus/Explicit's,
