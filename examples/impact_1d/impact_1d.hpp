@@ -186,7 +186,7 @@ inline double leading_crossing(const std::vector<std::pair<double, double>>& pro
 }
 
 struct result {
-    hugoniot_state rh;              // what the jump conditions predict
+    hugoniot_state rh;              // what the jump conditions predict, for the paper's HMX (make_hmx()) whatever the run's material
     double rh_temperature = 0;      // K, hugoniot_temperature(rh)
     double rh_plastic_heat = 0;     // K, uniaxial_plastic_heat(rh)
     double plateau_sigma_yy = 0;    // Pa, compression positive
