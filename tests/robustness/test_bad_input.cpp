@@ -195,6 +195,8 @@ TEST_CASE("a bad grid is refused when the solver is built", "[robustness][bad_in
         {"cell size", with_grid([](auto& g) { g.cell = not_a_number; }), "grid cell size h (m)", "finite and > 0"},
         {"grid bounds", with_grid([](auto& g) { g.lower[0] = not_a_number; }), "grid lower bound x (m)", "finite"},
         {"wall friction", with_grid([](auto& g) { g.wall_friction[1] = -0.1; }), "wall friction mu along y", "finite and >= 0"},
+        {"wall friction", with_grid([](auto& g) { g.wall_friction[0] = 0.3; }), "wall friction mu along x",
+         "0 unless that axis is a one-sided wall (boundary::wall)"},
         {"grid bounds", with_grid([](auto& g) { g.upper[1] = infinity; }), "grid upper bound y (m)", "finite"},
         {"grid extent", with_grid([](auto& g) { g.upper[1] = -1; }), "grid extent along y (upper - lower, m)", "> 0"},
         {"grid extent in cells", with_grid([](auto& g) { g.cell = 0.3; }),
