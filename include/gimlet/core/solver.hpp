@@ -95,6 +95,11 @@ struct health_events {
     /// Column names, in eos::guard bit order.
     static constexpr std::array<const char*, kinds> names = {"eos_compression_capped", "eos_negative_modulus",
                                                              "no_wave_speed"};
+    /// What each kind did, in the same order (the text after the particle in `first`).
+    static constexpr std::array<const char*, kinds> what = {
+        "the EOS's tangent modulus was taken at the capped compression (the singularity margin)",
+        "the EOS's tangent modulus was negative and taken as 0",
+        "(K + 4G/3)/rho was not positive: the wave speed was taken as 0"};
     std::array<std::uint64_t, kinds> count{};
     std::array<std::string, kinds> first;  ///< "step N (t = ...): particle i (body b) at (x, y) m: ..."; empty if none
     [[nodiscard]] std::uint64_t total() const noexcept {
@@ -958,16 +963,12 @@ private:
     void count_health() {
         if (!pending_health_.valid || pending_health_.step != steps_) return;
         pending_health_.valid = false;
-        static constexpr std::array<const char*, health_events::kinds> what = {
-            "the EOS's tangent modulus was taken at the capped compression (the singularity margin)",
-            "the EOS's tangent modulus was negative and taken as 0",
-            "(K + 4G/3)/rho was not positive: the wave speed was taken as 0"};
         for (std::size_t k = 0; k < health_events::kinds; ++k) {
             if (pending_health_.count[k] == 0) continue;
             health_.count[k] += pending_health_.count[k];
             if (health_.first[k].empty())
                 health_.first[k] = describe_particle(particles_[std::size_t(pending_health_.first[k])], steps_,
-                                                     double(time_)) + ": " + what[k];
+                                                     double(time_)) + ": " + health_events::what[k];
         }
     }
 

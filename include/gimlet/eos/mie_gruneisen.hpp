@@ -94,8 +94,9 @@ public:
     }
 
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
-    /// de = -P dV along an isentrope, for the time step's wave speed (never negative).
-    /// The compression is capped at the singularity margin (where pressure() stops the run),
+    /// de = -P dV along an isentrope, for the time step's wave speed (never negative). It reads
+    /// the whole e (a point_state carries no shear energy; at most Y0^2 / (6 G rho), 185 J/kg
+    /// for HMX at yield, a 0.4 MPa part of a 14 GPa modulus). The compression is capped at the singularity margin (where pressure() stops the run),
     /// so the modulus is finite for any state; the three-argument form says when that cap, or
     /// the clamp of a negative modulus to 0, acted (eos::guard bits added to `guards`).
     template <class Real, class P>

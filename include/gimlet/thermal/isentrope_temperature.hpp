@@ -6,6 +6,7 @@
 
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/error.hpp"
+#include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/thermal/concepts.hpp"
 #include "gimlet/thermal/detail/parameters.hpp"
 
@@ -57,8 +58,12 @@ public:
     isentrope_temperature(double density0, double sound_speed, double slope, double gruneisen, double specific_heat,
                           double initial_temperature, double cold_tolerance = 0.1)
         : rho0_(density0), c0_(sound_speed), s_(slope), gamma_(gruneisen), cv_(specific_heat),
-          t0_(initial_temperature), cold_(cold_tolerance) {
-        detail::validate_shock_parameters(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature);
+          t0_(initial_temperature), cold_(cold_tolerance),
+          // The reference Hugoniot is the EOS's own; the shock parameters are named as the
+          // thermal policy's if they are bad (validated before the EOS sees them).
+          hugoniot_((detail::validate_shock_parameters(density0, sound_speed, slope, gruneisen, specific_heat,
+                                                       initial_temperature),
+                     eos::mie_gruneisen<>(density0, sound_speed, slope, gruneisen))) {
         require_non_negative("cold_tolerance (K)", cold_tolerance);
         table_ = std::make_shared<const table>(build());
     }
@@ -138,12 +143,8 @@ private:
 
     [[nodiscard]] double j_sing() const { return 1.0 - 1.0 / s_; }
 
-    [[nodiscard]] double hugoniot_pressure(double j) const {
-        const double eta = 1.0 - j, k0 = rho0_ * c0_ * c0_;
-        if (eta >= 0.0) return k0 * eta / ((1.0 - s_ * eta) * (1.0 - s_ * eta));
-        return k0 * (1.0 / j - 1.0);
-    }
-    [[nodiscard]] double hugoniot_energy(double j) const { return 0.5 * hugoniot_pressure(j) * (1.0 - j) / rho0_; }
+    [[nodiscard]] double hugoniot_pressure(double j) const { return hugoniot_.hugoniot_pressure(j); }
+    [[nodiscard]] double hugoniot_energy(double j) const { return hugoniot_.hugoniot_energy(j); }
 
     /// The integrand g(J) = d(J^Gamma e_s)/dJ.
     [[nodiscard]] double integrand(double j) const {
@@ -221,6 +222,7 @@ private:
     }
 
     double rho0_, c0_, s_, gamma_, cv_, t0_, cold_;
+    eos::mie_gruneisen<> hugoniot_;  // the reference curve P_H(J), e_H(J)
     std::shared_ptr<const table> table_;
 };
 
