@@ -44,6 +44,7 @@ struct settings {
     std::vector<double> snapshots_after_contact;
     double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
     bool volumetric_average = false; // solver_options::volumetric_average
+    double pic_fraction = 0;         // solver_options::pic_fraction
     int threads = 0;
 };
 

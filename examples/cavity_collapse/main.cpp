@@ -5,7 +5,7 @@
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
-//                   [--hot-spot-radius 0.5] [--volumetric-average off] [--threads 0]
+//                   [--hot-spot-radius 0.5] [--volumetric-average off] [--pic-fraction 0] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -148,7 +148,7 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"cell_m", s.cell},                  {"contact", double(int(s.contact))},
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
             {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
-            {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}};
+            {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction}};
 }
 
 template <class Contact>
@@ -156,6 +156,7 @@ int run(const settings& s, const run_files& io) {
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
+    opt.pic_fraction = s.pic_fraction;
     gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, Contact{});
     const auto& out = io.out;
     monitor mon(s);
@@ -288,7 +289,7 @@ int run(const settings& s, const run_files& io) {
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average";
+          "upper_aspect_at_collapse,volumetric_average,pic_fraction";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
@@ -299,7 +300,7 @@ int run(const settings& s, const run_files& io) {
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
-       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off");
+       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';
     su.close();
@@ -352,7 +353,7 @@ int main(int argc, char** argv) try {
     example::cli args(static_cast<int>(rest.size()), rest.data(),
                       "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
                       "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--threads N] [--quiet] [--no-figures] [--output DIR] "
+                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--pic-fraction A] [--threads N] [--quiet] [--no-figures] [--output DIR] "
                       "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
     settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
@@ -366,6 +367,7 @@ int main(int argc, char** argv) try {
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
+    s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     {
         const std::string list = args.path("snapshots-after-contact-us");
         std::stringstream ss(list);

@@ -28,6 +28,7 @@ struct settings {
     double end_time = 3e-6;    // s
     gimlet::update_scheme scheme = gimlet::update_scheme::usf;
     bool volumetric_average = false;  // solver_options::volumetric_average
+    double pic_fraction = 0;   // solver_options::pic_fraction (the damping transfer's blend)
     double margin = 0;         // m of empty grid beyond each free end (0: 10 cells); room to fly off
     int threads = 0;
 };
@@ -159,6 +160,7 @@ solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::materials
     opt.scheme = s.scheme;
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
+    opt.pic_fraction = s.pic_fraction;
     return solver_for<M, C>(scene, opt);
 }
 

@@ -5,7 +5,8 @@
 // Rankine-Hugoniot state; writes OUTPUT/summary.csv and OUTPUT/profile.csv.
 //
 //   impact_1d [--velocity 300] [--cell 0.1] [--end-us 3] [--scheme usf|musl|usl]
-//             [--contact single|distance] [--volumetric-average off|on] [--threads 0]
+//             [--contact single|distance] [--volumetric-average off|on] [--pic-fraction 0]
+//             [--viscosity-linear 0.06] [--viscosity-quadratic 1.2] [--threads 0]
 //             [--output results/impact_1d]
 //
 // --contact distance gives each slab its own velocity field with the paper's distance switch,
@@ -26,7 +27,8 @@
 int main(int argc, char** argv) try {
     example::cli args(argc, argv,
                       "usage: impact_1d [--velocity V_m_s] [--cell H_mm] [--end-us T] [--scheme usf|musl|usl] "
-                      "[--contact single|distance] [--volumetric-average off|on] [--threads N] [--output DIR]");
+                      "[--contact single|distance] [--volumetric-average off|on] [--pic-fraction A] [--viscosity-linear B1] "
+                      "[--viscosity-quadratic B2] [--threads N] [--output DIR]");
     impact_1d::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
@@ -35,21 +37,26 @@ int main(int argc, char** argv) try {
     const std::string scheme = args.choice("scheme", "usf", {"usf", "musl", "usl"});
     const std::string contact = args.choice("contact", "single", {"single", "distance"});
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
+    s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
+    const double b1 = args.real("viscosity-linear", 0.06, 0.0, 10.0, true);
+    const double b2 = args.real("viscosity-quadratic", 1.2, 0.0, 10.0, true);
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
              : scheme == "usl"  ? gimlet::update_scheme::usl
                                 : gimlet::update_scheme::usf;
     const auto out = args.directory("output", "results/impact_1d");
     args.finish();
 
+    const auto mat = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(b2, b1));
     const auto r = contact == "distance"
-                       ? impact_1d::run<impact_1d::material, gimlet::contact::distance>(s)
-                       : impact_1d::run(s);
+                       ? impact_1d::run<impact_1d::material, gimlet::contact::distance>(s, mat)
+                       : impact_1d::run(s, mat);
 
     std::ofstream csv(out / "summary.csv");
     csv << "velocity_m_s,plateau_pressure_Pa,plateau_stress_yy_Pa,shock_speed_m_s,energy_error_rel,"
            "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
            "plateau_temperature_K,max_temperature_K,cell_mm,scheme,rh_temperature_K,plateau_eta,rh_eta,"
-           "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta";
+           "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta,pic_fraction,"
+           "viscosity_linear,viscosity_quadratic";
     for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
     csv << '\n';
     gimlet::io::exact_numbers(csv);
@@ -59,7 +66,8 @@ int main(int argc, char** argv) try {
         << r.max_temperature << ',' << s.cell * 1e3 << ',' << scheme << ',' << r.rh_temperature << ','
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
-        << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f;
+        << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << b1 << ','
+        << b2;
     for (const auto n : r.health.count) csv << ',' << n;
     csv << '\n';
 

@@ -61,7 +61,7 @@ auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0) {
 // Two HMX blocks pressed together along y, periodic on both axes (they also meet across the
 // seam), with an odd number of slabs along the periodic last axis: the slab whose stencils wrap
 // onto the first gets a colour of its own.
-auto blocks(int threads, gimlet::update_scheme scheme) {
+auto blocks(int threads, gimlet::update_scheme scheme, double pic_fraction = 0) {
     using material = gimlet::materials::hmx_material<>;
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector::Zero();
@@ -78,6 +78,7 @@ auto blocks(int threads, gimlet::update_scheme scheme) {
     gimlet::solver_options<S> opt;
     opt.threads = threads;
     opt.scheme = scheme;
+    opt.pic_fraction = pic_fraction;
     gimlet::solver<S, gimlet::shape::ugimp, material, gimlet::contact::distance> sol(sc, opt);
     for (int n = 0; n < 60; ++n) sol.step(1e-8);
     return sol;
@@ -106,4 +107,8 @@ TEST_CASE("results do not depend on the thread count: sorting by cell", "[core][
 TEST_CASE("results do not depend on the thread count: HMX, distance contact, periodic axes", "[core][threads]") {
     check_same(blocks(1, gimlet::update_scheme::musl), blocks(2, gimlet::update_scheme::musl));
     check_same(blocks(1, gimlet::update_scheme::usf), blocks(2, gimlet::update_scheme::usf));
+}
+
+TEST_CASE("results do not depend on the thread count: the PIC blend and its heat", "[core][threads]") {
+    check_same(blocks(1, gimlet::update_scheme::musl, 0.5), blocks(2, gimlet::update_scheme::musl, 0.5));
 }

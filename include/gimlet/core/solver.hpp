@@ -42,7 +42,9 @@ enum class update_scheme {
 template <Space S>
 struct solver_options {
     update_scheme scheme = update_scheme::musl;
-    /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP).
+    /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP, and
+    /// nothing of the blend is computed). The kinetic energy the blend removes goes into the
+    /// particles' internal energy, exactly in sum (docs/equations.md, "Damping transfer").
     double pic_fraction = 0.0;
     /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
     double cfl = 0.4;
@@ -619,7 +621,22 @@ private:
     // it free: sum_p m_p dv_p = dt f_i, and f_ip / m_p = S_ip b - sigma_p G_ip / rho_p is bounded
     // by the particle's own state (docs/equations.md, "Light nodes").
 
-    // FLIP velocity update with optional PIC blend, and x_p += dt sum S_ip v_i^{n+1}
+    // ---- the damping transfer (solver_options::pic_fraction) -----------------------------
+    //
+    // With S the grid-to-particle interpolation, the PIC velocity S v^{n+1} differs from the FLIP
+    // velocity v_p + S (v^{n+1} - v^n) by d_p = v_p - S v^n, the part of the particle velocities
+    // the grid cannot carry. The blend v_p' = v_FLIP - alpha d_p removes the kinetic energy
+    // sum_p m_p (alpha d_p . v_FLIP - alpha^2 |d_p|^2 / 2), and each particle's internal energy
+    // takes its share (docs/equations.md, "Damping transfer"). Writing v_FLIP = v_PIC + d_p, the
+    // cross term sum_p m_p d_p . S v^{n+1} is not Galilean-invariant particle by particle (a body
+    // at 700 m/s would heat and cool its particles by 700 |d_p|). Summed, it is
+    // sum_i v_i^{n+1} . (m_i v_i^n - sum_j K_ij v_j^n), K_ij = sum_p S_ip m_p S_jp, and as K is
+    // symmetric with rows summing to m_i (the weights sum to one), that is
+    // sum_p m_p cov_p(v^{n+1}, v^n): the covariance of the new and old nodal velocities over the
+    // particle's stencil, which is invariant, and close to their variance (so positive) at a
+    // stable step. Each particle takes that share.
+
+    // FLIP velocity update with the damping blend, and x_p += dt sum S_ip v_i^{n+1}
     // (docs/physics.md section 1, step 3), with the light nodes' forces above. With remap (MUSL),
     // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
     // section 1, step 4): the gather reads grid velocities only and the scatter writes grid
@@ -627,8 +644,10 @@ private:
     void grid_to_particles(real dt, bool remap) {
         auto& x = particles_.template column<fields::position>();
         auto& v = particles_.template column<fields::velocity>();
+        auto& energy = particles_.template column<fields::specific_internal_energy>();
         const auto& m = particles_.template column<fields::mass>();
         const real alpha = real(options_.pic_fraction);
+        const bool damping = alpha > 0;
         const vector b = options_.body_force.template cast<real>();
         auto update = [&](std::size_t i) {
             vector v_pic = vector::Zero(), dv = vector::Zero();
@@ -642,6 +661,7 @@ private:
                 // (A stencil node the particle neither weighs nor pushes is no light node of its.)
                 light = light || (!(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero()));
             });
+            vector change = vector::Zero();
             if (light) {
                 // Rare: only particles on a light node pay for this pass.
                 const matrix vs = force_stress(i);
@@ -654,12 +674,28 @@ private:
                     if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
                 });
                 // Into the PIC velocity too, which then sums to the nodes' momenta exactly.
-                const vector change = dt / m[i] * own;
+                change = dt / m[i] * own;
                 dv += change;
                 v_pic += change;
             }
             x[i] += dt * v_pic;
-            v[i] = (real(1) - alpha) * (v[i] + dv) + alpha * v_pic;
+            const vector v_flip = v[i] + dv;
+            if (!damping) {
+                v[i] = v_flip;
+            } else {
+                vector old = vector::Zero();
+                st.for_each([&](std::size_t node, real w, const vector&) { old += w * grid_.velocity_old[base + node]; });
+                const vector fresh = v_pic - change;  // S v^{n+1}
+                real cov = 0;  // centred, so no cancellation of |v|^2
+                st.for_each([&](std::size_t node, real w, const vector&) {
+                    cov += w * (grid_.velocity[base + node] - fresh).dot(grid_.velocity_old[base + node] - old);
+                });
+                const vector d = v_flip - v_pic;
+                // The particle's share of sum_p m_p d_p . v_PIC (the light nodes' part is its own).
+                const real cross = cov + d.dot(change);
+                v[i] = v_flip - alpha * d;
+                energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
+            }
             if (remap) {
                 const vector mv = m[i] * v[i];
                 st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
