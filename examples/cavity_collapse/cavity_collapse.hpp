@@ -18,6 +18,10 @@ namespace cavity_collapse {
 
 using S = gimlet::space<2>;
 using material = gimlet::materials::hmx_material<>;
+// The paper's temperature (Walsh-Christian in V plus plastic work) on the same EOS, for
+// side-by-side reproduction (cavity_collapse --temperature paper).
+using paper_material = gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy,
+                                                       gimlet::materials::paper_temperature>;
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
 constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's sides
@@ -45,6 +49,7 @@ struct settings {
     double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
+    bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
     int threads = 0;
 };
 
@@ -81,7 +86,8 @@ inline void validate(const settings& s) {
     gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
 }
 
-inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
+template <class M = material>
+gimlet::scene::scene<S, M> make_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S> gs;
     // Room for the free ends: the blocks rebound from each other at up to about v, so a long
@@ -91,8 +97,9 @@ inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
     gs.upper = S::vector(width, 2 * height + gap + margin);
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
-    gimlet::scene::scene<S, material> scene(gs);
-    const auto hmx = gimlet::materials::make_hmx();
+    gimlet::scene::scene<S, M> scene(gs);
+    const auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy,
+                                                 typename M::thermal_type>();
     const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
     const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
     const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);

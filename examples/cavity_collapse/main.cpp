@@ -5,7 +5,8 @@
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
-//                   [--hot-spot-radius 0.5] [--volumetric-average off] [--pic-fraction 0] [--threads 0]
+//                   [--hot-spot-radius 0.5] [--volumetric-average off] [--pic-fraction 0]
+//                   [--temperature isentrope|paper] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -148,16 +149,17 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"cell_m", s.cell},                  {"contact", double(int(s.contact))},
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
             {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
-            {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction}};
+            {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction},
+            {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}};
 }
 
-template <class Contact>
+template <class Contact, class Material>
 int run(const settings& s, const run_files& io) {
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
-    gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, Contact{});
+    gimlet::solver<S, gimlet::shape::ugimp, Material, Contact> sol(make_scene<Material>(s), opt, Contact{});
     const auto& out = io.out;
     monitor mon(s);
     summary sum;
@@ -289,7 +291,7 @@ int run(const settings& s, const run_files& io) {
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average,pic_fraction";
+          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
@@ -300,7 +302,8 @@ int run(const settings& s, const run_files& io) {
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
        << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
-       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction;
+       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
+       << (s.paper_temperature ? "paper" : "isentrope");
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';
     su.close();
@@ -353,7 +356,7 @@ int main(int argc, char** argv) try {
     example::cli args(static_cast<int>(rest.size()), rest.data(),
                       "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
                       "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--pic-fraction A] [--threads N] [--quiet] [--no-figures] [--output DIR] "
+                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--pic-fraction A] [--temperature isentrope|paper] [--threads N] [--quiet] [--no-figures] [--output DIR] "
                       "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
     settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
@@ -368,6 +371,7 @@ int main(int argc, char** argv) try {
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
+    s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
     {
         const std::string list = args.path("snapshots-after-contact-us");
         std::stringstream ss(list);
@@ -393,12 +397,14 @@ int main(int argc, char** argv) try {
         throw std::invalid_argument("--checkpoint-at-us = " + std::to_string(io.checkpoint_at * 1e6) +
                                     " is invalid; valid range: [0, --end-us) so the run reaches it");
 
-    int rc = 0;
-    switch (s.contact) {
-        case contact_kind::single: rc = run<gimlet::contact::single_field>(s, io); break;
-        case contact_kind::bardenhagen: rc = run<gimlet::contact::bardenhagen>(s, io); break;
-        case contact_kind::distance: rc = run<gimlet::contact::distance>(s, io); break;
-    }
+    auto with = [&]<class Material>() {
+        switch (s.contact) {
+            case contact_kind::single: return run<gimlet::contact::single_field, Material>(s, io);
+            case contact_kind::bardenhagen: return run<gimlet::contact::bardenhagen, Material>(s, io);
+            default: return run<gimlet::contact::distance, Material>(s, io);
+        }
+    };
+    const int rc = s.paper_temperature ? with.template operator()<paper_material>() : with.template operator()<material>();
     if (!figures) return rc;
     // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
     const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
