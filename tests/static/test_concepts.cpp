@@ -107,6 +107,28 @@ struct my_single_field {
 struct contact_without_flag {
     using required_fields = gimlet::field_list<>;
 };
+// A law whose in_contact is not const: the framework calls it on a const policy.
+struct law_not_const {
+    static constexpr bool multi_field = true;
+    using required_fields = gimlet::field_list<>;
+    template <gimlet::Space S>
+    bool in_contact(const gimlet::contact::pair_view<S>&) { return true; }
+};
+// A law and a node resolver at once: which one the solver should call is ambiguous.
+struct law_and_resolver {
+    static constexpr bool multi_field = true;
+    using required_fields = gimlet::field_list<>;
+    template <gimlet::Space S>
+    bool in_contact(const gimlet::contact::pair_view<S>&) const { return true; }
+    template <gimlet::Space S>
+    void resolve(gimlet::contact::node_view<S>&) const {}
+};
+// A law with 2-D pair views only.
+struct law_2d_only {
+    static constexpr bool multi_field = true;
+    using required_fields = gimlet::field_list<>;
+    bool in_contact(const gimlet::contact::pair_view<gimlet::space<2>>&) const { return true; }
+};
 
 // ---- field tags ----
 struct unnamed_field {
@@ -138,6 +160,10 @@ static_assert(!gimlet::shape::Shape<user::shape_without_stencil>);
 
 static_assert(gimlet::contact::Contact<user::my_single_field>);
 static_assert(!gimlet::contact::Contact<user::contact_without_flag>);
+static_assert(!gimlet::contact::Contact<user::law_not_const>);
+static_assert(!gimlet::contact::Contact<user::law_and_resolver>);
+static_assert(!gimlet::contact::Contact<user::law_2d_only>);
+static_assert(gimlet::contact::Law<gimlet::contact::distance> && gimlet::contact::Law<gimlet::contact::bardenhagen>);
 
 static_assert(gimlet::Field<user::heat>);
 static_assert(!gimlet::Field<user::unnamed_field>);

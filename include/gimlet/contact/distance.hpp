@@ -36,12 +36,12 @@ public:
                 "(0, 2]");
     }
 
+    /// In contact once the facing particle centres are within the switching distance.
     template <Space S>
-    void resolve(node_view<S>& node) const {
+    [[nodiscard]] bool in_contact(const pair_view<S>& pair) const noexcept {
         using real = typename S::real;
         // A small tolerance: touching bodies sit exactly at h/2 and must count as in contact.
-        const real limit = real(gap_) * node.cell * (real(1) + real(1e-9));
-        detail::correct(node, real(mu_), [&](std::size_t a, std::size_t b) { return node.gap(a, b) <= limit; });
+        return pair.gap <= real(gap_) * pair.cell * (real(1) + real(1e-9));
     }
 
     [[nodiscard]] double friction() const noexcept { return mu_; }

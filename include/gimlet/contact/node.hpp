@@ -22,7 +22,9 @@ template <class Vector>
 }
 
 /// One node where several bodies have mass (above the solver's cut-off). Arrays are indexed by
-/// the bodies present at this node, in increasing body id.
+/// the bodies present at this node, in increasing body id. A contact law (contact::Law) never
+/// sees it: the framework does (multi_field/correct.hpp), and so does a low-level policy
+/// (contact::NodeResolver), which corrects `momentum` itself.
 template <Space S>
 struct node_view {
     using real = typename S::real;
@@ -40,6 +42,8 @@ struct node_view {
     const real* reach = nullptr;
     real cell = 0;                    ///< h
     real dt = 0;                      ///< time step
+    std::size_t node = 0;             ///< the node's index in the grid
+    vector position = vector::Zero(); ///< the node's position (m)
 
     /// Most bodies at one node: their pairs must fit the 64-bit masks below. The solver stops a
     /// run with a numerical_error naming the node if more meet there.
@@ -77,6 +81,55 @@ struct node_view {
     }
     [[nodiscard]] bool kept(std::size_t a, std::size_t b) const noexcept { return kept_pairs & pair_bit(a, b); }
     [[nodiscard]] bool open(std::size_t a, std::size_t b) const noexcept { return open_pairs & pair_bit(a, b); }
+};
+
+/// What a contact law (contact::Law) sees of one pair of bodies a and b at one grid node: read
+/// only. Its velocities are those of this pass at this moment (after the forces and the walls,
+/// and after the corrections of the node's earlier pairs).
+template <Space S>
+struct pair_view {
+    using real = typename S::real;
+    using vector = typename S::vector;
+
+    std::size_t node = 0;              ///< the node's index in the grid
+    vector position = vector::Zero();  ///< the node's position (m)
+    std::uint32_t body_a = 0, body_b = 0;  ///< the two bodies' ids (body_a < body_b)
+    real mass_a = 0, mass_b = 0;       ///< their nodal masses m_i^a, m_i^b
+    vector velocity_a = vector::Zero(), velocity_b = vector::Zero();  ///< their nodal velocities
+    vector normal = vector::Zero();    ///< unit normal from a towards b (contact::pair_normal)
+    /// Distance between the facing particle centres of a and b along `normal` (the reference
+    /// paper's R_i^pq, its section 2.2): h/2 when 2 x 2 particles per cell touch.
+    real gap = 0;
+    real cell = 0;                     ///< h
+    real dt = 0;                       ///< time step
+
+    /// (v_a - v_b) . n: positive while a and b approach each other along the normal.
+    [[nodiscard]] real approach() const { return (velocity_a - velocity_b).dot(normal); }
+    /// The tangential part of v_a - v_b.
+    [[nodiscard]] vector slip() const {
+        const vector rel = velocity_a - velocity_b;
+        return rel - rel.dot(normal) * normal;
+    }
+    /// m_a m_b / (m_a + m_b): the impulse (m_a m_b / (m_a + m_b)) * approach() stops the approach.
+    [[nodiscard]] real reduced_mass() const { return mass_a * mass_b / (mass_a + mass_b); }
+};
+
+/// What the framework did to one pair at a node (for a law's counters, contact::Counting).
+template <Space S>
+struct pair_outcome {
+    /// The momentum given to body a (body b took the opposite), after the projection onto the
+    /// dissipative set.
+    typename S::vector impulse = S::vector::Zero();
+};
+
+/// What the framework tells a contact law's per-particle hook (contact::ParticleHook) about one
+/// particle after the step's last contact pass.
+template <Space S>
+struct particle_contact {
+    /// Whether a node of the particle's stencil holds a pair of its body that was in contact.
+    bool engaged = false;
+    /// The particle's weight on those nodes, sum of S_ip (in [0, 1]).
+    typename S::real weight = 0;
 };
 
 }  // namespace gimlet::contact

@@ -15,6 +15,7 @@
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/material_update.hpp"
 #include "gimlet/core/particle_store.hpp"
+#include "gimlet/multi_field/correct.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/concepts.hpp"
 
@@ -27,6 +28,8 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace gimlet {
@@ -154,6 +157,21 @@ public:
 
     static constexpr bool multi_field = C::multi_field;
 
+private:
+    using particle_ref = gimlet::particle_ref<store_type>;
+    // A contact law's counters (contact::Counting), or nothing.
+    static constexpr bool counting = [] {
+        if constexpr (requires { typename C::tally; }) return contact::Counting<C, S>;
+        else return false;
+    }();
+    struct no_tally {};
+    using tally_type = typename decltype([] {
+        if constexpr (counting) return std::type_identity<typename C::tally>{};
+        else return std::type_identity<no_tally>{};
+    }())::type;
+
+public:
+
     /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
     /// the grid, overlapping bodies or a body with no particles.
     /// \param contact the contact policy's parameters (e.g. friction).
@@ -262,6 +280,8 @@ public:
     [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
+    /// The contact policy, with whatever it counted (contact::Counting).
+    [[nodiscard]] const C& contact() const noexcept { return contact_; }
     [[nodiscard]] real time() const noexcept { return time_; }
 
     /// Set the clock of a run resumed from saved particles (io/checkpoint.hpp): the simulated
@@ -445,6 +465,7 @@ private:
         } else {
             lap(timings_.grid_to_particle);
         }
+        if constexpr (multi_field) contact_hook();
         if (!usf && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
         finish_step(dt, !usf);
         lap(timings_.material_update);
@@ -935,6 +956,8 @@ private:
     // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
     void resolve_contact(contact_pass pass) {
         const std::size_t nodes = grid_.size();
+        tally_type pass_tally{};
+        tally_type* tally = &pass_tally;
         const bool trial = pass == contact_pass::trial, deciding = trial || pass == contact_pass::decide;
         if (trial) {
             // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
@@ -967,11 +990,13 @@ private:
                                        shared_reach_.data() + sn.first_pair,
                                        grid_.cell(),
                                        dt_};
+            view.node = sn.node;
+            view.position = grid_.node_position(sn.node);
             if (!deciding) {
                 view.kept_pairs = engaged_[s];
                 view.open_pairs = pass == contact_pass::remap ? ~engaged_[s] : std::uint64_t(0);
             }
-            contact_.resolve(view);
+            resolve_node(view, tally);
             if (deciding) {
                 std::uint64_t pairs = view.engaged_pairs;
                 // A user policy that corrects without saying which pairs: all of them.
@@ -985,7 +1010,7 @@ private:
                 view.kept_pairs = engaged_[s];
                 view.open_pairs = 0;
                 view.engaged_pairs = 0;
-                contact_.resolve(view);
+                resolve_node(view, tally);
             }
             for (std::size_t j = 0; j < k; ++j) {
                 const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
@@ -993,6 +1018,53 @@ private:
             }
         }
         grid_.apply_walls(grid_.velocity, pass == contact_pass::remap ? wall_pass::keep : wall_pass::decide);
+        if constexpr (counting) contact_.record(std::as_const(pass_tally));
+        else (void)tally;
+    }
+
+    // The policy's correction at one node: the framework's for a contact::Law, its own for a
+    // contact::NodeResolver.
+    void resolve_node(contact::node_view<S>& view, tally_type* tally) {
+        if constexpr (contact::Law<C>) {
+            if constexpr (counting) multi_field::correct(view, contact_, tally);
+            else multi_field::correct(view, contact_);
+        } else {
+            (void)tally;
+            contact_.resolve(view);
+        }
+    }
+
+    // A contact policy's per-particle hook (contact::ParticleHook), after the step's last
+    // contact pass: whether the particle's body was engaged at a node of its stencil, and the
+    // particle's weight there.
+    void contact_hook() {
+        if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
+            const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+            const std::size_t nodes = grid_.size();
+            GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+            for (std::ptrdiff_t k = 0; k < n; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const auto body = static_cast<std::uint32_t>(field_base(i) / nodes);
+                contact::particle_contact<S> info;
+                stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                    const std::ptrdiff_t s = shared_index_[node];
+                    if (s < 0 || engaged_[std::size_t(s)] == 0) return;
+                    const shared_node& sn = shared_[std::size_t(s)];
+                    contact::node_view<S> probe;
+                    probe.count = sn.count;
+                    std::size_t a = 0;
+                    while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+                    if (a == sn.count) return;
+                    for (std::size_t b = 0; b < sn.count; ++b)
+                        if (engaged_[std::size_t(s)] & probe.pair_bit(a, b)) {
+                            info.engaged = true;
+                            info.weight += w;
+                            return;
+                        }
+                });
+                contact_.after_contact(particles_[i], std::as_const(info));
+            }
+        }
     }
 
     // The guards of the time step this step takes (stable_time_step), into health_.
