@@ -6,7 +6,7 @@
 //   * momentum conserved to round-off, relative to |m v| of one body;
 //   * total energy E = kinetic + internal never rises above its start by more than a stated
 //     tolerance; what it loses (contact, grid transfers) is printed.
-// What "internal" holds (core/material_update.hpp): e integrates the whole stress power
+// What "internal" holds (material/update.hpp): e integrates the whole stress power
 // de = dt/rho (sigma^n + sigma^{n+1})/2 : D with sigma = s - (P + q) I, so it holds the
 // pressure work, the artificial-viscosity work q (the shock's heat) and the deviatoric work,
 // elastic (stored) and plastic (heat) alike. The temperature is a function of these, not an

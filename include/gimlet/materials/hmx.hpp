@@ -6,7 +6,7 @@
 
 #include "gimlet/core/elastic_moduli.hpp"
 #include "gimlet/core/error.hpp"
-#include "gimlet/core/material.hpp"
+#include "gimlet/material/material.hpp"
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/strength/von_mises.hpp"
 #include "gimlet/thermal/hugoniot_heating.hpp"

@@ -6,7 +6,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/grid.hpp"
-#include "gimlet/core/material.hpp"
+#include "gimlet/material/material.hpp"
 #include "gimlet/scene/geometry.hpp"
 
 #include <cmath>

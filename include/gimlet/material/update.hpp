@@ -8,7 +8,7 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
-#include "gimlet/core/material.hpp"
+#include "gimlet/material/material.hpp"
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/space.hpp"
 #include "gimlet/eos/concepts.hpp"
