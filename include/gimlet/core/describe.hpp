@@ -24,4 +24,17 @@ template <class P>
     return os.str();
 }
 
+namespace detail {
+/// "(x, y) m" (8 significant digits), for messages that name a place.
+template <class V>
+[[nodiscard]] std::string format_position(const V& x) {
+    std::ostringstream os;
+    os.precision(8);
+    os << "(";
+    for (int d = 0; d < x.size(); ++d) os << (d ? ", " : "") << double(x[d]);
+    os << ") m";
+    return os.str();
+}
+}  // namespace detail
+
 }  // namespace gimlet

@@ -18,6 +18,10 @@
 #include "gimlet/multi_field/correct.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/concepts.hpp"
+#include "gimlet/solver/health.hpp"
+#include "gimlet/solver/options.hpp"
+#include "gimlet/solver/seeding.hpp"
+#include "gimlet/solver/slabs.hpp"
 
 #include <algorithm>
 #include <array>
@@ -33,100 +37,6 @@
 #include <vector>
 
 namespace gimlet {
-
-/// Order of the stress update within a step (Bardenhagen 2002; Wallstedt & Guilkey 2008).
-enum class update_scheme {
-    musl,  ///< modified update stress last: stress from re-mapped particle velocities (default)
-    usl,   ///< update stress last, from the updated grid velocities
-    usf,   ///< update stress first, from the velocities of the particle-to-grid map
-};
-
-/// Run-time options of the step. Validated when the solver is built.
-template <Space S>
-struct solver_options {
-    update_scheme scheme = update_scheme::musl;
-    /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP, and
-    /// nothing of the blend is computed). The kinetic energy the blend removes goes into the
-    /// particles' internal energy, exactly in sum (docs/equations.md, "Damping transfer").
-    double pic_fraction = 0.0;
-    /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
-    double cfl = 0.4;
-    /// Nodes lighter than this fraction of the heaviest particle's mass are light nodes: their
-    /// force is never divided by their mass (their velocity stays the mean of their particles'),
-    /// and it goes back to the particles that exerted it, so momentum stays exact (see
-    /// docs/equations.md, "Light nodes"). In [0, 1e-3].
-    double mass_cutoff = 1e-12;
-    /// Upper bound on the time step (s), > 0.
-    double max_time_step = std::numeric_limits<double>::infinity();
-    /// Body force per unit mass (m/s^2), e.g. gravity.
-    typename S::vector body_force = S::vector::Zero();
-    /// OpenMP threads for the particle and node loops; 0 = the OpenMP default. Results do not
-    /// depend on it: every reduction runs in a fixed order.
-    int threads = 0;
-    /// Sort the particles by grid cell before every step whose number (solver::steps()) is a
-    /// multiple of this; 0 = never (the default). Particles that share nodes then sit close in
-    /// memory, which keeps the transfers cache-friendly once the material has mixed. Sorting
-    /// **permutes particle indices** (every field moves with its particle): an index held
-    /// across such a step (by an observer, say) then names another particle. It is
-    /// deterministic (a stable sort on the cell) and keyed on the step count, so a run resumed
-    /// with solver::resume_at sorts at the same steps as the uninterrupted run.
-    int sort_interval = 0;
-    /// Spread each particle's volume change over a cell (a volumetric F-bar in rate form, after
-    /// Coombs et al. 2018): the volumetric strain rate tr L of every particle is replaced by the
-    /// volume-weighted mean over the particles of its body that share its stencil's first node
-    /// (a cell-sized region: for the odd stencils of uGIMP, cpGIMP and the quadratic B-spline,
-    /// the dual cell around a node), its deviatoric part kept; the forces take the region's mean
-    /// stress to match. Two bodies are never averaged together. It keeps per-body, per-node sums,
-    /// cleared every step. Off by default (see docs/equations.md).
-    bool volumetric_average = false;
-
-    void validate() const {
-        require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
-        require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
-        require(mass_cutoff >= 0.0 && mass_cutoff <= 1e-3, "mass_cutoff", mass_cutoff, "[0, 1e-3]");
-        require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
-        for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
-        require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");
-        require(sort_interval >= 0, "sort_interval (steps)", sort_interval, ">= 0 (0 = never sort)");
-    }
-};
-
-/// The silent numerical guards that acted on particles in a run (eos::guard): how often each
-/// kind did, and the first particle it met (its body, place and step). A guard that stops the
-/// run throws a numerical_error instead and is not counted here. Counted when the guarded value
-/// enters a step (the wave speeds of a time step the solver chose).
-struct health_events {
-    static constexpr std::size_t kinds = eos::guard::kinds;
-    /// Column names, in eos::guard bit order.
-    static constexpr std::array<const char*, kinds> names = {"eos_compression_capped", "eos_negative_modulus",
-                                                             "no_wave_speed"};
-    /// What each kind did, in the same order (the text after the particle in `first`).
-    static constexpr std::array<const char*, kinds> what = {
-        "the EOS's tangent modulus was taken at the capped compression (the singularity margin)",
-        "the EOS's tangent modulus was negative and taken as 0",
-        "(K + 4G/3)/rho was not positive: the wave speed was taken as 0"};
-    std::array<std::uint64_t, kinds> count{};
-    std::array<std::string, kinds> first;  ///< "step N (t = ...): particle i (body b) at (x, y) m: ..."; empty if none
-    [[nodiscard]] std::uint64_t total() const noexcept {
-        std::uint64_t n = 0;
-        for (auto c : count) n += c;
-        return n;
-    }
-};
-
-/// Where the wall-clock time of a solver's steps went (s, summed over its steps): see
-/// solver::timings(). Fused loops are counted where they end up.
-struct step_timings {
-    double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
-    double particle_to_grid = 0;   ///< weights, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
-    double grid_update = 0;        ///< nodal velocities, momentum update, walls
-    double contact = 0;            ///< multi-field contact at nodes shared by bodies
-    double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
-    double material_update = 0;    ///< velocity gradient, constitutive update, checks
-    [[nodiscard]] double total() const noexcept {
-        return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
-    }
-};
 
 /// The explicit GIMP/MPM solver (docs/physics.md section 1).
 ///
@@ -189,7 +99,7 @@ public:
                                             std::string(detail::axis_name(d)),
                                         "usf", "musl or usl (USF with a one-sided wall creates energy)");
         for (const auto& b : sc.bodies()) materials_.push_back(b.material);
-        fill(sc);
+        detail::seed_particles(sc, grid_, particles_);
         real heaviest = 0;
         for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
         mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
@@ -202,7 +112,7 @@ public:
         // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
         wall_free_.assign(grid_.entries(), vector::Ones());
         grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
-        set_up_slabs();
+        slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
     }
 
     /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
@@ -325,66 +235,6 @@ private:
         return options_.threads > 0 ? options_.threads : detail::default_threads();
     }
 
-    // ---- scene to particles -------------------------------------------------------------
-
-    void fill(const scene::scene<S, M>& sc) {
-        const auto& gs = sc.grid();
-        const auto& bodies = sc.bodies();
-        for (std::uint32_t b = 0; b < bodies.size(); ++b) {
-            const auto& body = bodies[b];
-            const real delta = gs.cell / real(body.particles_per_cell);
-            // Particles sit at the centres of a sub-cell lattice aligned with the grid, so bodies
-            // whose edges lie on grid lines are filled exactly.
-            std::array<long, dim> lo{}, hi{};
-            for (int d = 0; d < dim; ++d) {
-                const std::string ax = detail::axis_name(d);
-                require(body.lower[d] >= gs.lower[d] - real(1e-9) * gs.cell &&
-                            body.upper[d] <= gs.upper[d] + real(1e-9) * gs.cell,
-                        "extent of " + body.name + " along " + ax + " (m, from " +
-                            detail::to_text(double(body.lower[d])) + ")",
-                        double(body.upper[d]),
-                        "inside the grid [" + detail::to_text(double(gs.lower[d])) + ", " +
-                            detail::to_text(double(gs.upper[d])) + "]");
-                lo[d] = static_cast<long>(std::floor((body.lower[d] - gs.lower[d]) / delta));
-                hi[d] = static_cast<long>(std::ceil((body.upper[d] - gs.lower[d]) / delta));
-            }
-            const std::size_t first = particles_.size();
-            std::array<long, dim> j = lo;
-            while (true) {
-                vector x;
-                for (int d = 0; d < dim; ++d) x[d] = gs.lower[d] + (real(j[d]) + real(0.5)) * delta;
-                if (grid_.inside(x) && body.contains(x)) {
-                    for (std::uint32_t o = 0; o < b; ++o)
-                        if (bodies[o].contains(x))
-                            throw invalid_parameter("bodies", body.name + " and " + bodies[o].name,
-                                                    "non-overlapping (they share the point " +
-                                                        format_vector(x) + ")");
-                    add_particle(body, b, x, delta);
-                }
-                int d = 0;
-                while (d < dim && ++j[d] >= hi[d]) j[d] = lo[d], ++d;
-                if (d == dim) break;
-            }
-            require(particles_.size() > first, "particle count of " + body.name, 0.0,
-                    ">= 1 (the region holds no particle-lattice point: too small for the cell, "
-                    "or its cavity removes all of it)");
-        }
-    }
-
-    void add_particle(const scene::body<S, M>& body, std::uint32_t id, const vector& x, real delta) {
-        const std::size_t i = particles_.add();
-        auto p = particles_[i];
-        const real vol = std::pow(delta, real(dim));
-        p.template get<fields::position>() = x;
-        p.template get<fields::velocity>() = body.velocity;
-        p.template get<fields::volume0>() = vol;
-        p.template get<fields::mass>() = real(body.material.density) * vol;
-        p.template get<fields::body>() = id;
-        if constexpr (store_type::template has<fields::domain_half_width>)
-            p.template get<fields::domain_half_width>() = vector::Constant(delta / real(2));
-        if constexpr (M::thermal_type::enabled) body.material.thermal.initialize(p);
-    }
-
     // ---- the step -----------------------------------------------------------------------
     //
     // The phases of docs/physics.md section 1 are fused where their arithmetic allows it, so a step
@@ -416,7 +266,7 @@ private:
         lap(timings_.sort);
         dt_ = dt;
         const bool usf = options_.scheme == update_scheme::usf;
-        bucket_by_slab();
+        slabs_.bucket();
         if (options_.volumetric_average) average_mean_stress();
         grid_.clear();
         // USF with contact also maps the forces of the current stress: they decide where contact
@@ -475,7 +325,7 @@ private:
     void compute_stencils() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
-        slab_of_.resize(particles_.size());
+        slabs_.resize(particles_.size());
         GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) compute_stencil(static_cast<std::size_t>(i));
     }
@@ -486,57 +336,15 @@ private:
         const auto p = particles_[i];
         auto& st = stencils_[i];
         st.template compute_with<Sh>(grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
-        slab_of_[i] = static_cast<std::uint32_t>(std::min(st.last_row / slab_rows, slabs_ - 1));
+        slabs_.assign(i, st.last_row);
     }
 
-    // ---- deterministic parallel scatter ---------------------------------------------------
-    //
-    // The grid is cut along its last axis into slabs of slab_rows >= stencil - 1 node rows; a
-    // particle belongs to the slab of its stencil's first row. Its stencil then reaches at most
-    // into the next slab, so slabs two apart never share a node: all even slabs can scatter at
-    // once, then all odd ones (and, on a periodic axis with an odd slab count, the last slab,
-    // which wraps onto slab 0, alone). Within a slab, particles go in increasing index. Every
-    // node therefore sums its contributions in an order fixed by the grid and the particle
-    // order, whatever the thread count. (Colouring as in e.g. Gao et al. 2018, "GPU
-    // optimization of material point methods", section 4.2, on slabs instead of blocks.)
-
-    void set_up_slabs() {
-        const int rows = grid_.nodes(dim - 1);
-        // The last slab takes the remainder (between slab_rows and 2 slab_rows - 1 rows), so
-        // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
-        slabs_ = std::max(1, rows / slab_rows);
-        for (auto& c : colour_slabs_) c.clear();
-        for (int s = 0; s < slabs_; ++s) {
-            const bool wraps_onto_first = grid_.periodic(dim - 1) && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
-            colour_slabs_[wraps_onto_first ? 2 : std::size_t(s % 2)].push_back(s);
-        }
-    }
-
-    // Particle indices grouped by slab, increasing within each (a stable counting sort).
-    void bucket_by_slab() {
-        const std::size_t n = particles_.size();
-        slab_start_.assign(std::size_t(slabs_) + 1, 0);
-        for (std::size_t i = 0; i < n; ++i) ++slab_start_[slab_of_[i] + 1];
-        for (std::size_t s = 0; s < std::size_t(slabs_); ++s) slab_start_[s + 1] += slab_start_[s];
-        slab_cursor_.assign(slab_start_.begin(), slab_start_.end() - 1);
-        slab_particles_.resize(n);
-        for (std::size_t i = 0; i < n; ++i) slab_particles_[slab_cursor_[slab_of_[i]]++] = i;
-    }
-
-    // f(i) for every particle, slab by slab and colour by colour (see above). f must not throw.
+    // f(i) for every particle, slab by slab and colour by colour (detail::slab_schedule): every
+    // node sums its particles' contributions in an order fixed by the grid and the particle
+    // order, whatever the thread count. f must not throw.
     template <class F>
     void for_each_particle_by_slab(F&& f) {
-        [[maybe_unused]] const bool parallel = std::ptrdiff_t(particles_.size()) >= parallel_threshold;
-        GIMLET_OMP(parallel num_threads(threads()) if (parallel))
-        for (const auto& slabs : colour_slabs_) {
-            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
-            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
-            GIMLET_OMP(for schedule(dynamic, 1))
-            for (std::ptrdiff_t j = 0; j < count; ++j) {
-                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
-                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
-            }
-        }
+        slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
     }
 
     // ---- transfers ----------------------------------------------------------------------
@@ -869,7 +677,7 @@ private:
         };
         particles_.for_each_column([&](auto, auto& column) { permute(column); });
         permute(stencils_);
-        permute(slab_of_);
+        permute(slabs_.slab_of());
     }
 
     // ---- multi-field contact ------------------------------------------------------------
@@ -896,7 +704,7 @@ private:
                 for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_body_[first + j]);
                 throw numerical_error("gimlet: step " + std::to_string(steps_) + " (t = " +
                                       gimlet::detail::to_text(double(time_)) + " s): grid node at " +
-                                      format_vector(grid_.node_position(node)) + " is shared by " + std::to_string(k) +
+                                      detail::format_position(grid_.node_position(node)) + " is shared by " + std::to_string(k) +
                                       " bodies (" + ids + "); multi-field contact handles at most " +
                                       std::to_string(contact::node_view<S>::max_bodies) + " at one node");
             }
@@ -1131,27 +939,14 @@ private:
         throw numerical_error(describe_particle(particles_[i], steps_, double(time_)) + ": " + what);
     }
 
-    [[nodiscard]] static std::string format_vector(const vector& x) {
-        std::ostringstream os;
-        os.precision(8);
-        os << "(";
-        for (int d = 0; d < dim; ++d) os << (d ? ", " : "") << double(x[d]);
-        os << ") m";
-        return os.str();
-    }
 
     solver_options<S> options_;
     grid<S> grid_;
     std::vector<M> materials_;
     store_type particles_;
     std::vector<stencil_type> stencils_;
-    // The scatter's slabs (see for_each_particle_by_slab): each particle's slab, the particles
-    // of each slab, and the slabs of each colour.
-    static constexpr int slab_rows = std::max(Sh::stencil - 1, 1);
-    int slabs_ = 1;
-    std::vector<std::uint32_t> slab_of_;
-    std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
-    std::array<std::vector<int>, 3> colour_slabs_;
+    // The scatter's slabs of node rows (for_each_particle_by_slab).
+    detail::slab_schedule<std::max(Sh::stencil - 1, 1)> slabs_;
     step_timings timings_;
     health_events health_;
     struct pending_health {

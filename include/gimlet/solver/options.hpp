@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The solver's run-time options and its timings.
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/space.hpp"
+
+#include <limits>
+
+namespace gimlet {
+
+/// Order of the stress update within a step (Bardenhagen 2002; Wallstedt & Guilkey 2008).
+enum class update_scheme {
+    musl,  ///< modified update stress last: stress from re-mapped particle velocities (default)
+    usl,   ///< update stress last, from the updated grid velocities
+    usf,   ///< update stress first, from the velocities of the particle-to-grid map
+};
+
+/// Run-time options of the step. Validated when the solver is built.
+template <Space S>
+struct solver_options {
+    update_scheme scheme = update_scheme::musl;
+    /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP, and
+    /// nothing of the blend is computed). The kinetic energy the blend removes goes into the
+    /// particles' internal energy, exactly in sum (docs/equations.md, "Damping transfer").
+    double pic_fraction = 0.0;
+    /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
+    double cfl = 0.4;
+    /// Nodes lighter than this fraction of the heaviest particle's mass are light nodes: their
+    /// force is never divided by their mass (their velocity stays the mean of their particles'),
+    /// and it goes back to the particles that exerted it, so momentum stays exact (see
+    /// docs/equations.md, "Light nodes"). In [0, 1e-3].
+    double mass_cutoff = 1e-12;
+    /// Upper bound on the time step (s), > 0.
+    double max_time_step = std::numeric_limits<double>::infinity();
+    /// Body force per unit mass (m/s^2), e.g. gravity.
+    typename S::vector body_force = S::vector::Zero();
+    /// OpenMP threads for the particle and node loops; 0 = the OpenMP default. Results do not
+    /// depend on it: every reduction runs in a fixed order.
+    int threads = 0;
+    /// Sort the particles by grid cell before every step whose number (solver::steps()) is a
+    /// multiple of this; 0 = never (the default). Particles that share nodes then sit close in
+    /// memory, which keeps the transfers cache-friendly once the material has mixed. Sorting
+    /// **permutes particle indices** (every field moves with its particle): an index held
+    /// across such a step (by an observer, say) then names another particle. It is
+    /// deterministic (a stable sort on the cell) and keyed on the step count, so a run resumed
+    /// with solver::resume_at sorts at the same steps as the uninterrupted run.
+    int sort_interval = 0;
+    /// Spread each particle's volume change over a cell (a volumetric F-bar in rate form, after
+    /// Coombs et al. 2018): the volumetric strain rate tr L of every particle is replaced by the
+    /// volume-weighted mean over the particles of its body that share its stencil's first node
+    /// (a cell-sized region: for the odd stencils of uGIMP, cpGIMP and the quadratic B-spline,
+    /// the dual cell around a node), its deviatoric part kept; the forces take the region's mean
+    /// stress to match. Two bodies are never averaged together. It keeps per-body, per-node sums,
+    /// cleared every step. Off by default (see docs/equations.md).
+    bool volumetric_average = false;
+
+    void validate() const {
+        require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
+        require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
+        require(mass_cutoff >= 0.0 && mass_cutoff <= 1e-3, "mass_cutoff", mass_cutoff, "[0, 1e-3]");
+        require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
+        for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
+        require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");
+        require(sort_interval >= 0, "sort_interval (steps)", sort_interval, ">= 0 (0 = never sort)");
+    }
+};
+
+/// Where the wall-clock time of a solver's steps went (s, summed over its steps): see
+/// solver::timings(). Fused loops are counted where they end up.
+struct step_timings {
+    double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
+    double particle_to_grid = 0;   ///< weights, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
+    double grid_update = 0;        ///< nodal velocities, momentum update, walls
+    double contact = 0;            ///< multi-field contact at nodes shared by bodies
+    double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
+    double material_update = 0;    ///< velocity gradient, constitutive update, checks
+    [[nodiscard]] double total() const noexcept {
+        return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
+    }
+};
+
+}  // namespace gimlet

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Seeding: the particles of a scene's bodies (docs/physics.md section 2).
+
+#include "gimlet/core/describe.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/scene/scene.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+namespace gimlet::detail {
+
+/// One particle of `body` at x, of lattice spacing delta: its volume delta^dim, mass, velocity,
+/// body id, GIMP half-width delta/2 (where the shape keeps one) and the thermal policy's initial state.
+template <Space S, class M, class Store>
+void add_particle(Store& particles, const scene::body<S, M>& body, std::uint32_t id, const typename S::vector& x,
+                  typename S::real delta) {
+    using real = typename S::real;
+    using vector = typename S::vector;
+    const std::size_t i = particles.add();
+    auto p = particles[i];
+    const real vol = std::pow(delta, real(S::dim));
+    p.template get<fields::position>() = x;
+    p.template get<fields::velocity>() = body.velocity;
+    p.template get<fields::volume0>() = vol;
+    p.template get<fields::mass>() = real(body.material.density) * vol;
+    p.template get<fields::body>() = id;
+    if constexpr (Store::template has<fields::domain_half_width>)
+        p.template get<fields::domain_half_width>() = vector::Constant(delta / real(2));
+    if constexpr (M::thermal_type::enabled) body.material.thermal.initialize(p);
+}
+
+
+/// Fill `particles` with the particles of the scene's bodies: one at the centre of every cell of
+/// a sub-cell lattice (particles_per_cell per axis) aligned with the grid that lies inside the
+/// body. Throws invalid_parameter for a body outside the grid, two overlapping bodies, or a body
+/// with no particle.
+template <Space S, class M, class Store>
+void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& particles) {
+    using real = typename S::real;
+    using vector = typename S::vector;
+    constexpr int dim = S::dim;
+    const auto& gs = sc.grid();
+    const auto& bodies = sc.bodies();
+    for (std::uint32_t b = 0; b < bodies.size(); ++b) {
+        const auto& body = bodies[b];
+        const real delta = gs.cell / real(body.particles_per_cell);
+        // Particles sit at the centres of a sub-cell lattice aligned with the grid, so bodies
+        // whose edges lie on grid lines are filled exactly.
+        std::array<long, dim> lo{}, hi{};
+        for (int d = 0; d < dim; ++d) {
+            const std::string ax = detail::axis_name(d);
+            require(body.lower[d] >= gs.lower[d] - real(1e-9) * gs.cell &&
+                        body.upper[d] <= gs.upper[d] + real(1e-9) * gs.cell,
+                    "extent of " + body.name + " along " + ax + " (m, from " +
+                        detail::to_text(double(body.lower[d])) + ")",
+                    double(body.upper[d]),
+                    "inside the grid [" + detail::to_text(double(gs.lower[d])) + ", " +
+                        detail::to_text(double(gs.upper[d])) + "]");
+            lo[d] = static_cast<long>(std::floor((body.lower[d] - gs.lower[d]) / delta));
+            hi[d] = static_cast<long>(std::ceil((body.upper[d] - gs.lower[d]) / delta));
+        }
+        const std::size_t first = particles.size();
+        std::array<long, dim> j = lo;
+        while (true) {
+            vector x;
+            for (int d = 0; d < dim; ++d) x[d] = gs.lower[d] + (real(j[d]) + real(0.5)) * delta;
+            if (grid.inside(x) && body.contains(x)) {
+                for (std::uint32_t o = 0; o < b; ++o)
+                    if (bodies[o].contains(x))
+                        throw invalid_parameter("bodies", body.name + " and " + bodies[o].name,
+                                                "non-overlapping (they share the point " +
+                                                    format_position(x) + ")");
+                add_particle(particles, body, b, x, delta);
+            }
+            int d = 0;
+            while (d < dim && ++j[d] >= hi[d]) j[d] = lo[d], ++d;
+            if (d == dim) break;
+        }
+        require(particles.size() > first, "particle count of " + body.name, 0.0,
+                ">= 1 (the region holds no particle-lattice point: too small for the cell, "
+                "or its cavity removes all of it)");
+    }
+}
+
+}  // namespace gimlet::detail

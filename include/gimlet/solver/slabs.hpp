@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The deterministic parallel scatter's schedule: particles grouped in slabs of node rows,
+/// slabs coloured so that no two of a colour share a node.
+
+#include "gimlet/core/detail/omp.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gimlet::detail {
+
+/// The grid is cut along its last axis into slabs of SlabRows >= stencil - 1 node rows; a
+/// particle belongs to the slab of its stencil's first row. Its stencil then reaches at most
+/// into the next slab, so slabs two apart never share a node: all even slabs can scatter at
+/// once, then all odd ones (and, on a periodic axis with an odd slab count, the last slab,
+/// which wraps onto slab 0, alone). Within a slab, particles go in increasing index. Every
+/// node therefore sums its contributions in an order fixed by the grid and the particle
+/// order, whatever the thread count. (Colouring as in e.g. Gao et al. 2018, "GPU
+/// optimization of material point methods", section 4.2, on slabs instead of blocks.)
+template <int SlabRows>
+class slab_schedule {
+public:
+    /// The slabs of a grid with `rows` node rows along its last axis (periodic or not).
+    void set_up(int rows, bool periodic) {
+        // The last slab takes the remainder (between SlabRows and 2 SlabRows - 1 rows), so
+        // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
+        slabs_ = std::max(1, rows / SlabRows);
+        for (auto& c : colour_slabs_) c.clear();
+        for (int s = 0; s < slabs_; ++s) {
+            const bool wraps_onto_first = periodic && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
+            colour_slabs_[wraps_onto_first ? 2 : std::size_t(s % 2)].push_back(s);
+        }
+    }
+
+    /// Room for n particles.
+    void resize(std::size_t n) { slab_of_.resize(n); }
+    /// Particle i's stencil starts at node row `first_row` of the last axis.
+    void assign(std::size_t i, int first_row) {
+        slab_of_[i] = static_cast<std::uint32_t>(std::min(first_row / SlabRows, slabs_ - 1));
+    }
+    /// Each particle's slab, to be permuted with the particles.
+    [[nodiscard]] std::vector<std::uint32_t>& slab_of() noexcept { return slab_of_; }
+
+    /// Particle indices grouped by slab, increasing within each (a stable counting sort).
+    void bucket() {
+        const std::size_t n = slab_of_.size();
+        slab_start_.assign(std::size_t(slabs_) + 1, 0);
+        for (std::size_t i = 0; i < n; ++i) ++slab_start_[slab_of_[i] + 1];
+        for (std::size_t s = 0; s < std::size_t(slabs_); ++s) slab_start_[s + 1] += slab_start_[s];
+        slab_cursor_.assign(slab_start_.begin(), slab_start_.end() - 1);
+        slab_particles_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) slab_particles_[slab_cursor_[slab_of_[i]]++] = i;
+    }
+
+    /// f(i) for every particle, slab by slab and colour by colour, on `threads` threads if
+    /// `parallel`. f must not throw.
+    template <class F>
+    void for_each([[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
+        GIMLET_OMP(parallel num_threads(threads) if (parallel))
+        for (const auto& slabs : colour_slabs_) {
+            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
+            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
+            GIMLET_OMP(for schedule(dynamic, 1))
+            for (std::ptrdiff_t j = 0; j < count; ++j) {
+                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+            }
+        }
+    }
+
+private:
+    int slabs_ = 1;
+    std::vector<std::uint32_t> slab_of_;  // each particle's slab
+    std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
+    std::array<std::vector<int>, 3> colour_slabs_;  // the slabs of each colour
+};
+
+}  // namespace gimlet::detail
