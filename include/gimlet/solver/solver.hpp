@@ -15,7 +15,7 @@
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/material/update.hpp"
 #include "gimlet/core/particle_store.hpp"
-#include "gimlet/multi_field/correct.hpp"
+#include "gimlet/multi_field/exchange.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/solver/health.hpp"
@@ -69,16 +69,6 @@ public:
 
 private:
     using particle_ref = gimlet::particle_ref<store_type>;
-    // A contact law's counters (contact::Counting), or nothing.
-    static constexpr bool counting = [] {
-        if constexpr (requires { typename C::tally; }) return contact::Counting<C, S>;
-        else return false;
-    }();
-    struct no_tally {};
-    using tally_type = typename decltype([] {
-        if constexpr (counting) return std::type_identity<typename C::tally>{};
-        else return std::type_identity<no_tally>{};
-    }())::type;
 
 public:
 
@@ -106,7 +96,7 @@ public:
         if constexpr (multi_field) {
             // One velocity field per body (Bardenhagen et al. 2000); a single-field policy keeps one.
             grid_.set_field_count(materials_.size());
-            mass_gradient_.assign(grid_.entries(), vector::Zero());
+            exchange_.allocate(grid_.entries());
         }
         // Which components of a node's force the walls leave free (1) or take (0): the projection
         // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
@@ -270,7 +260,7 @@ private:
         if (options_.volumetric_average) average_mean_stress();
         grid_.clear();
         // USF with contact also maps the forces of the current stress: they decide where contact
-        // acts in this step (contact_pass::trial).
+        // acts in this step (multi_field::pass::trial).
         if (usf && !multi_field) scatter<false>();
         else scatter<true>();
         if constexpr (multi_field) find_shared_nodes();
@@ -283,7 +273,7 @@ private:
             // The stress sees the same contact as the momentum update, or it would strain the
             // bodies through each other: this pass decides where contact acts in this step.
             if constexpr (multi_field) {
-                resolve_contact(contact_pass::trial);
+                resolve_contact(multi_field::pass::trial);
                 std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
             }
             lap(timings_.contact);
@@ -300,7 +290,7 @@ private:
         // engaging one the stress saw free, makes the forces work on other velocities than the
         // ones that strained the material (an energy source: Bardenhagen contact from a gap
         // rebounded with 1.8x the energy it came in with).
-        if constexpr (multi_field) resolve_contact(usf ? contact_pass::keep : contact_pass::decide);
+        if constexpr (multi_field) resolve_contact(usf ? multi_field::pass::keep : multi_field::pass::decide);
         lap(timings_.contact);
         const bool musl = options_.scheme == update_scheme::musl;
         grid_to_particles(dt, musl);
@@ -310,7 +300,7 @@ private:
             nodal_velocity(grid_.velocity);
             grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
             lap(timings_.grid_to_particle);
-            if constexpr (multi_field) resolve_contact(contact_pass::remap);
+            if constexpr (multi_field) resolve_contact(multi_field::pass::remap);
             lap(timings_.contact);
         } else {
             lap(timings_.grid_to_particle);
@@ -355,7 +345,8 @@ private:
     void scatter() {
         const auto& m = particles_.template column<fields::mass>();
         const auto& v = particles_.template column<fields::velocity>();
-        if constexpr (multi_field) std::fill(mass_gradient_.begin(), mass_gradient_.end(), vector::Zero());
+        [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
+        if constexpr (multi_field) std::fill(mass_gradient.begin(), mass_gradient.end(), vector::Zero());
         const vector b = options_.body_force.template cast<real>();
         const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
         for_each_particle_by_slab([&](std::size_t i) {
@@ -376,7 +367,7 @@ private:
                 grid_.momentum[e] += w * mv;
                 // G is the gradient with respect to the particle position, so sum m_p G_ip points
                 // out of the body (docs/physics.md section 3; Bardenhagen et al. 2000, eq. 16).
-                if constexpr (multi_field) mass_gradient_[e] += mp * g;
+                if constexpr (multi_field) mass_gradient[e] += mp * g;
                 if constexpr (Forces) {
                     grid_.force[e] -= vs * g;
                     if (loaded) grid_.force[e] += w * mb;
@@ -680,171 +671,20 @@ private:
         permute(slabs_.slab_of());
     }
 
-    // ---- multi-field contact ------------------------------------------------------------
+    // ---- multi-field contact (multi_field::exchange) --------------------------------------
 
-    // The nodes where two or more bodies have mass above the cut-off, with each body's outward
-    // normal, each pair's normal and each body's furthest particle centre along it
-    // (contact::node_view::reach), from the positions at the start of the step. Only these
-    // nodes take part in contact, and the masses do not change within a step.
     void find_shared_nodes() {
-        const std::size_t nodes = grid_.size(), fields_n = grid_.field_count();
-        shared_index_.assign(nodes, -1);
-        shared_.clear(), shared_body_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
-        for (std::size_t node = 0; node < nodes; ++node) {
-            const std::size_t first = shared_body_.size();
-            for (std::size_t f = 0; f < fields_n; ++f)
-                if (grid_.mass[f * nodes + node] > mass_cutoff_) shared_body_.push_back(static_cast<std::uint32_t>(f));
-            const std::size_t k = shared_body_.size() - first;
-            if (k < 2) {
-                shared_body_.resize(first);
-                continue;
-            }
-            if (k > contact::node_view<S>::max_bodies) {
-                std::string ids;
-                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_body_[first + j]);
-                throw numerical_error("gimlet: step " + std::to_string(steps_) + " (t = " +
-                                      gimlet::detail::to_text(double(time_)) + " s): grid node at " +
-                                      detail::format_position(grid_.node_position(node)) + " is shared by " + std::to_string(k) +
-                                      " bodies (" + ids + "); multi-field contact handles at most " +
-                                      std::to_string(contact::node_view<S>::max_bodies) + " at one node");
-            }
-            shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
-            shared_.push_back({node, first, k, shared_pair_normal_.size()});
-            for (std::size_t j = 0; j < k; ++j) {
-                const vector& g = mass_gradient_[shared_body_[first + j] * nodes + node];
-                const real len = g.norm();
-                shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
-            }
-            // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
-            for (std::size_t a = 0; a < k; ++a)
-                for (std::size_t b = 0; b < k; ++b)
-                    shared_pair_normal_.push_back(
-                        a != b ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b])
-                               : vector::Zero());
-        }
-        shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
-        engaged_.assign(shared_.size(), 0);
-        if (shared_.empty()) return;
-        // Particles of one node are visited by one thread at a time (slab colouring), and a
-        // maximum does not depend on the order: the result is the same for any thread count.
-        for_each_particle_by_slab([&](std::size_t i) {
-            const auto body = static_cast<std::uint32_t>(field_base(i) / nodes);
-            stencils_[i].for_each_offset(grid_.cell(), [&](std::size_t node, const vector& r) {
-                const std::ptrdiff_t s = shared_index_[node];
-                if (s < 0) return;
-                const shared_node& sn = shared_[std::size_t(s)];
-                std::size_t a = 0;
-                while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
-                if (a == sn.count) return;  // below the cut-off at this node
-                for (std::size_t b = 0; b < sn.count; ++b) {
-                    if (b == a) continue;
-                    const std::size_t slot = sn.first_pair + a * sn.count + b;
-                    shared_reach_[slot] = std::max(shared_reach_[slot], r.dot(shared_pair_normal_[slot]));
-                }
-            });
-        });
-    }
-
-    // Which contact pass of a step this is. Each node records the pairs of bodies the deciding
-    // pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
-    // - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
-    //   velocities after the forces of the current stress.
-    // - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
-    //   (node_view::kept_pairs); the policy decides the others freely.
-    // - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
-    //   velocities the forces of the current stress would give (grid_.force); then the pairs it
-    //   engaged are constrained on the velocities the stress update will use. So USF engages
-    //   contact where MUSL would, while the contact force is compressive, and not on the sign of
-    //   a start-of-step relative velocity, which chatters near release.
-    // - `keep` (USF, after the grid update): the recorded pairs only, constraint kept, so the
-    //   forces work on the velocities that strained the material.
-    enum class contact_pass { decide, remap, trial, keep };
-
-    // At every node shared by two or more bodies, let the contact policy correct the bodies'
-    // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
-    void resolve_contact(contact_pass pass) {
         const std::size_t nodes = grid_.size();
-        tally_type pass_tally{};
-        tally_type* tally = &pass_tally;
-        const bool trial = pass == contact_pass::trial, deciding = trial || pass == contact_pass::decide;
-        if (trial) {
-            // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
-            trial_velocity_.resize(grid_.entries());
-            for (std::size_t e = 0; e < grid_.entries(); ++e)
-                trial_velocity_[e] = grid_.mass[e] > mass_cutoff_
-                                         ? vector(grid_.velocity_old[e] + dt_ * grid_.force[e] / grid_.mass[e])
-                                         : vector::Zero();
-            grid_.apply_walls(trial_velocity_, wall_pass::trial);
-        }
-        for (std::size_t s = 0; s < shared_.size(); ++s) {
-            if (pass == contact_pass::keep && engaged_[s] == 0) continue;
-            const shared_node& sn = shared_[s];
-            const std::size_t k = sn.count;
-            m_.resize(k), p_.resize(k), p_before_.resize(k);
-            auto load = [&](const std::vector<vector>& velocity) {
-                for (std::size_t j = 0; j < k; ++j) {
-                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
-                    m_[j] = grid_.mass[e];
-                    p_[j] = grid_.mass[e] * velocity[e];  // after walls
-                }
-            };
-            load(trial ? trial_velocity_ : grid_.velocity);
-            std::copy(p_.begin(), p_.end(), p_before_.begin());
-            contact::node_view<S> view{k,
-                                       shared_body_.data() + sn.first_body,
-                                       m_.data(),
-                                       p_.data(),
-                                       shared_normal_.data() + sn.first_body,
-                                       shared_reach_.data() + sn.first_pair,
-                                       grid_.cell(),
-                                       dt_};
-            view.node = sn.node;
-            view.position = grid_.node_position(sn.node);
-            if (!deciding) {
-                view.kept_pairs = engaged_[s];
-                view.open_pairs = pass == contact_pass::remap ? ~engaged_[s] : std::uint64_t(0);
-            }
-            resolve_node(view, tally);
-            if (deciding) {
-                std::uint64_t pairs = view.engaged_pairs;
-                // A user policy that corrects without saying which pairs: all of them.
-                for (std::size_t j = 0; j < k && pairs == 0; ++j)
-                    if (p_[j] != p_before_[j]) pairs = ~std::uint64_t(0);
-                engaged_[s] = pairs;
-            }
-            if (trial) {
-                if (engaged_[s] == 0) continue;
-                load(grid_.velocity);
-                view.kept_pairs = engaged_[s];
-                view.open_pairs = 0;
-                view.engaged_pairs = 0;
-                resolve_node(view, tally);
-            }
-            for (std::size_t j = 0; j < k; ++j) {
-                const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
-                grid_.velocity[e] = p_[j] / m_[j];
-            }
-        }
-        grid_.apply_walls(grid_.velocity, pass == contact_pass::remap ? wall_pass::keep : wall_pass::decide);
-        if constexpr (counting) contact_.record(std::as_const(pass_tally));
-        else (void)tally;
+        exchange_.find_shared_nodes(
+            grid_, mass_cutoff_, steps_, double(time_), stencils_,
+            [&](std::size_t i) { return static_cast<std::uint32_t>(field_base(i) / nodes); },
+            [&](auto&& f) { for_each_particle_by_slab(f); });
     }
 
-    // The policy's correction at one node: the framework's for a contact::Law, its own for a
-    // contact::NodeResolver.
-    void resolve_node(contact::node_view<S>& view, tally_type* tally) {
-        if constexpr (contact::Law<C>) {
-            if constexpr (counting) multi_field::correct(view, contact_, tally);
-            else multi_field::correct(view, contact_);
-        } else {
-            (void)tally;
-            contact_.resolve(view);
-        }
-    }
+    void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
 
     // A contact policy's per-particle hook (contact::ParticleHook), after the step's last
-    // contact pass: whether the particle's body was engaged at a node of its stencil, and the
-    // particle's weight there.
+    // contact pass.
     void contact_hook() {
         if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
@@ -853,24 +693,8 @@ private:
             for (std::ptrdiff_t k = 0; k < n; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const auto body = static_cast<std::uint32_t>(field_base(i) / nodes);
-                contact::particle_contact<S> info;
-                stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                    const std::ptrdiff_t s = shared_index_[node];
-                    if (s < 0 || engaged_[std::size_t(s)] == 0) return;
-                    const shared_node& sn = shared_[std::size_t(s)];
-                    contact::node_view<S> probe;
-                    probe.count = sn.count;
-                    std::size_t a = 0;
-                    while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
-                    if (a == sn.count) return;
-                    for (std::size_t b = 0; b < sn.count; ++b)
-                        if (engaged_[std::size_t(s)] & probe.pair_bit(a, b)) {
-                            info.engaged = true;
-                            info.weight += w;
-                            return;
-                        }
-                });
-                contact_.after_contact(particles_[i], std::as_const(info));
+                const contact::particle_contact<S> info = exchange_.contact_of(body, stencils_[i]);
+                contact_.after_contact(particles_[i], info);
             }
         }
     }
@@ -964,23 +788,7 @@ private:
     bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
     real dt_ = 0;
-    // Multi-field contact only (empty otherwise): per field and node, the mass gradient; the
-    // nodes shared by two or more bodies (find_shared_nodes) with, per shared node, its bodies
-    // and their normals (shared_body_, shared_normal_ from first_body), its pairs' normals and
-    // reaches (count x count from first_pair) and the pairs engaged by the step's deciding pass;
-    // scratch space for one node's masses and momenta.
-    struct shared_node {
-        std::size_t node, first_body, count, first_pair;
-    };
-    std::vector<vector> mass_gradient_;
-    std::vector<std::ptrdiff_t> shared_index_;
-    std::vector<shared_node> shared_;
-    std::vector<std::uint32_t> shared_body_;
-    std::vector<vector> shared_normal_, shared_pair_normal_;
-    std::vector<real> shared_reach_;
-    std::vector<std::uint64_t> engaged_;
-    std::vector<real> m_;
-    std::vector<vector> p_, p_before_, trial_velocity_;
+    multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };

@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The multi-field contact framework across the grid: which nodes several bodies share, their
+/// normals and gaps, the contact passes of a step and the pairs each keeps (docs/equations.md,
+/// Contact). The correction at one node is multi_field::correct (correct.hpp).
+
+#include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/node.hpp"
+#include "gimlet/core/describe.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/multi_field/correct.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace gimlet::multi_field {
+
+// Which contact pass of a step this is. Each node records the pairs of bodies the deciding
+// pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
+// - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
+//   velocities after the forces of the current stress.
+// - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
+//   (node_view::kept_pairs); the policy decides the others freely.
+// - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
+//   velocities the forces of the current stress would give (grid::force); then the pairs it
+//   engaged are constrained on the velocities the stress update will use. So USF engages
+//   contact where MUSL would, while the contact force is compressive, and not on the sign of
+//   a start-of-step relative velocity, which chatters near release.
+// - `keep` (USF, after the grid update): the recorded pairs only, constraint kept, so the
+//   forces work on the velocities that strained the material.
+enum class pass { decide, remap, trial, keep };
+
+
+/// The state of multi-field contact in a solver: per field and node the mass gradient (the
+/// scatter fills it), and per step the shared nodes, their bodies' normals, each pair's normal
+/// and reach, and the pairs the deciding pass engaged.
+template <Space S, contact::Contact C>
+class exchange {
+public:
+    using real = typename S::real;
+    using vector = typename S::vector;
+
+    /// Room for `entries` node entries (fields x nodes) of mass gradient.
+    void allocate(std::size_t entries) { mass_gradient_.assign(entries, vector::Zero()); }
+    /// Per field and node, sum_p m_p G_ip: the scatter adds to it (zero it first).
+    [[nodiscard]] std::vector<vector>& mass_gradient() noexcept { return mass_gradient_; }
+
+    // The nodes where two or more bodies have mass above the cut-off, with each body's outward
+    // normal, each pair's normal and each body's furthest particle centre along it
+    // (contact::node_view::reach), from the positions at the start of the step. Only these
+    // nodes take part in contact, and the masses do not change within a step.
+    template <class Stencils, class BodyOf, class ForEach>
+    void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
+                           BodyOf body_of, ForEach&& for_each_particle) {
+        const std::size_t nodes = grid.size(), fields_n = grid.field_count();
+        shared_index_.assign(nodes, -1);
+        shared_.clear(), shared_body_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
+        for (std::size_t node = 0; node < nodes; ++node) {
+            const std::size_t first = shared_body_.size();
+            for (std::size_t f = 0; f < fields_n; ++f)
+                if (grid.mass[f * nodes + node] > cutoff) shared_body_.push_back(static_cast<std::uint32_t>(f));
+            const std::size_t k = shared_body_.size() - first;
+            if (k < 2) {
+                shared_body_.resize(first);
+                continue;
+            }
+            if (k > contact::node_view<S>::max_bodies) {
+                std::string ids;
+                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_body_[first + j]);
+                throw numerical_error("gimlet: step " + std::to_string(step) + " (t = " +
+                                      gimlet::detail::to_text(time) + " s): grid node at " +
+                                      gimlet::detail::format_position(grid.node_position(node)) + " is shared by " + std::to_string(k) +
+                                      " bodies (" + ids + "); multi-field contact handles at most " +
+                                      std::to_string(contact::node_view<S>::max_bodies) + " at one node");
+            }
+            shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
+            shared_.push_back({node, first, k, shared_pair_normal_.size()});
+            for (std::size_t j = 0; j < k; ++j) {
+                const vector& g = mass_gradient_[shared_body_[first + j] * nodes + node];
+                const real len = g.norm();
+                shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
+            }
+            // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
+            for (std::size_t a = 0; a < k; ++a)
+                for (std::size_t b = 0; b < k; ++b)
+                    shared_pair_normal_.push_back(
+                        a != b ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b])
+                               : vector::Zero());
+        }
+        shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
+        engaged_.assign(shared_.size(), 0);
+        if (shared_.empty()) return;
+        // Particles of one node are visited by one thread at a time (slab colouring), and a
+        // maximum does not depend on the order: the result is the same for any thread count.
+        for_each_particle([&](std::size_t i) {
+            const std::uint32_t body = body_of(i);
+            stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, const vector& r) {
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0) return;
+                const shared_node& sn = shared_[std::size_t(s)];
+                std::size_t a = 0;
+                while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+                if (a == sn.count) return;  // below the cut-off at this node
+                for (std::size_t b = 0; b < sn.count; ++b) {
+                    if (b == a) continue;
+                    const std::size_t slot = sn.first_pair + a * sn.count + b;
+                    shared_reach_[slot] = std::max(shared_reach_[slot], r.dot(shared_pair_normal_[slot]));
+                }
+            });
+        });
+    }
+
+    // At every node shared by two or more bodies, let the contact policy correct the bodies'
+    // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
+    void resolve(pass pass, grid<S>& grid, C& contact, real dt, real cutoff) {
+        const std::size_t nodes = grid.size();
+        tally_type pass_tally{};
+        tally_type* tally = &pass_tally;
+        const bool trial = pass == pass::trial, deciding = trial || pass == pass::decide;
+        if (trial) {
+            // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
+            trial_velocity_.resize(grid.entries());
+            for (std::size_t e = 0; e < grid.entries(); ++e)
+                trial_velocity_[e] = grid.mass[e] > cutoff
+                                         ? vector(grid.velocity_old[e] + dt * grid.force[e] / grid.mass[e])
+                                         : vector::Zero();
+            grid.apply_walls(trial_velocity_, wall_pass::trial);
+        }
+        for (std::size_t s = 0; s < shared_.size(); ++s) {
+            if (pass == pass::keep && engaged_[s] == 0) continue;
+            const shared_node& sn = shared_[s];
+            const std::size_t k = sn.count;
+            m_.resize(k), p_.resize(k), p_before_.resize(k);
+            auto load = [&](const std::vector<vector>& velocity) {
+                for (std::size_t j = 0; j < k; ++j) {
+                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
+                    m_[j] = grid.mass[e];
+                    p_[j] = grid.mass[e] * velocity[e];  // after walls
+                }
+            };
+            load(trial ? trial_velocity_ : grid.velocity);
+            std::copy(p_.begin(), p_.end(), p_before_.begin());
+            contact::node_view<S> view{k,
+                                       shared_body_.data() + sn.first_body,
+                                       m_.data(),
+                                       p_.data(),
+                                       shared_normal_.data() + sn.first_body,
+                                       shared_reach_.data() + sn.first_pair,
+                                       grid.cell(),
+                                       dt};
+            view.node = sn.node;
+            view.position = grid.node_position(sn.node);
+            if (!deciding) {
+                view.kept_pairs = engaged_[s];
+                view.open_pairs = pass == pass::remap ? ~engaged_[s] : std::uint64_t(0);
+            }
+            resolve_node(view, contact, tally);
+            if (deciding) {
+                std::uint64_t pairs = view.engaged_pairs;
+                // A user policy that corrects without saying which pairs: all of them.
+                for (std::size_t j = 0; j < k && pairs == 0; ++j)
+                    if (p_[j] != p_before_[j]) pairs = ~std::uint64_t(0);
+                engaged_[s] = pairs;
+            }
+            if (trial) {
+                if (engaged_[s] == 0) continue;
+                load(grid.velocity);
+                view.kept_pairs = engaged_[s];
+                view.open_pairs = 0;
+                view.engaged_pairs = 0;
+                resolve_node(view, contact, tally);
+            }
+            for (std::size_t j = 0; j < k; ++j) {
+                const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
+                grid.velocity[e] = p_[j] / m_[j];
+            }
+        }
+        grid.apply_walls(grid.velocity, pass == pass::remap ? wall_pass::keep : wall_pass::decide);
+        if constexpr (counting) contact.record(std::as_const(pass_tally));
+        else (void)tally;
+    }
+
+    /// What contact did to a particle of `body` with stencil `st` in this step
+    /// (contact::particle_contact): whether a node of its stencil held an engaged pair of its
+    /// body, and its weight there.
+    template <class Stencil>
+    [[nodiscard]] contact::particle_contact<S> contact_of(std::uint32_t body, const Stencil& st) const {
+        contact::particle_contact<S> info;
+        st.for_each([&](std::size_t node, real w, const vector&) {
+            const std::ptrdiff_t s = shared_index_[node];
+            if (s < 0 || engaged_[std::size_t(s)] == 0) return;
+            const shared_node& sn = shared_[std::size_t(s)];
+            contact::node_view<S> probe;
+            probe.count = sn.count;
+            std::size_t a = 0;
+            while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+            if (a == sn.count) return;
+            for (std::size_t b = 0; b < sn.count; ++b)
+                if (engaged_[std::size_t(s)] & probe.pair_bit(a, b)) {
+                    info.engaged = true;
+                    info.weight += w;
+                    return;
+                }
+        });
+        return info;
+    }
+
+private:
+    // A contact law's counters (contact::Counting), or nothing.
+    static constexpr bool counting = [] {
+        if constexpr (requires { typename C::tally; }) return contact::Counting<C, S>;
+        else return false;
+    }();
+    struct no_tally {};
+    using tally_type = typename decltype([] {
+        if constexpr (counting) return std::type_identity<typename C::tally>{};
+        else return std::type_identity<no_tally>{};
+    }())::type;
+
+    // The policy's correction at one node: the framework's for a contact::Law, its own for a
+    // contact::NodeResolver.
+    static void resolve_node(contact::node_view<S>& view, C& contact, tally_type* tally) {
+        if constexpr (contact::Law<C>) {
+            if constexpr (counting) multi_field::correct(view, contact, tally);
+            else multi_field::correct(view, contact);
+        } else {
+            (void)tally;
+            contact.resolve(view);
+        }
+    }
+
+    // Per field and node, the mass gradient; the nodes shared by two or more bodies
+    // (find_shared_nodes) with, per shared node, its bodies and their normals (shared_body_,
+    // shared_normal_ from first_body), its pairs' normals and reaches (count x count from
+    // first_pair) and the pairs engaged by the step's deciding pass; scratch space for one
+    // node's masses and momenta.
+    struct shared_node {
+        std::size_t node, first_body, count, first_pair;
+    };
+    std::vector<vector> mass_gradient_;
+    std::vector<std::ptrdiff_t> shared_index_;
+    std::vector<shared_node> shared_;
+    std::vector<std::uint32_t> shared_body_;
+    std::vector<vector> shared_normal_, shared_pair_normal_;
+    std::vector<real> shared_reach_;
+    std::vector<std::uint64_t> engaged_;
+    std::vector<real> m_;
+    std::vector<vector> p_, p_before_, trial_velocity_;
+};
+
+}  // namespace gimlet::multi_field
