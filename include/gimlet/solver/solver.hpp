@@ -236,14 +236,30 @@ private:
     // with the same operations as in the unfused order; only the order in which a node sums its
     // particles' contributions is the scatter's (see for_each_particle_by_slab).
 
-    void advance(real dt) {
+    // Wall-clock time of the step's phases: lap(into) adds the time since the last lap.
+    struct phase_clock {
         using clock = std::chrono::steady_clock;
-        auto mark = clock::now();
-        auto lap = [&mark](double& into) {
+        clock::time_point mark = clock::now();
+        void operator()(double& into) {
             const auto now = clock::now();
             into += std::chrono::duration<double>(now - mark).count();
             mark = now;
-        };
+        }
+    };
+
+    void advance(real dt) {
+        phase_clock lap;
+        begin_step(dt, lap);
+        switch (options_.scheme) {
+            case update_scheme::musl: musl_step(dt, lap); break;
+            case update_scheme::usl: usl_step(dt, lap); break;
+            case update_scheme::usf: usf_step(dt, lap); break;
+        }
+    }
+
+    // What every scheme does first: the checks of what changed between steps, the weights at
+    // x^n, the slabs of the scatter, an empty grid.
+    void begin_step(real dt, phase_clock& lap) {
         check_pending();
         count_health();
         lap(timings_.material_update);  // where the checks are done in every other step
@@ -255,59 +271,90 @@ private:
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
         dt_ = dt;
-        const bool usf = options_.scheme == update_scheme::usf;
         slabs_.bucket();
         if (options_.volumetric_average) average_mean_stress();
         grid_.clear();
-        // USF with contact also maps the forces of the current stress: they decide where contact
-        // acts in this step (multi_field::pass::trial).
-        if (usf && !multi_field) scatter<false>();
-        else scatter<true>();
+    }
+
+    // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
+    // re-mapped to the grid, contact again (keeping the grid update's pairs), and the stress
+    // from the re-mapped velocities.
+    void musl_step(real dt, phase_clock& lap) {
+        scatter<true>();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
-        if (usf) {
-            nodal_velocity(grid_.velocity_old);
-            grid_.velocity = grid_.velocity_old;
-            grid_.apply_walls(grid_.velocity);
-            lap(timings_.grid_update);
-            // The stress sees the same contact as the momentum update, or it would strain the
-            // bodies through each other: this pass decides where contact acts in this step.
-            if constexpr (multi_field) {
-                resolve_contact(multi_field::pass::trial);
-                std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
-            }
-            lap(timings_.contact);
-            if (options_.volumetric_average) average_volumetric_rates(grid_.velocity);
-            update_material_points(dt, grid_.velocity);
-            lap(timings_.material_update);
-            if (options_.volumetric_average) average_mean_stress();
-            map_forces();
-            lap(timings_.particle_to_grid);
+        update_grid_momentum(dt, true);
+        lap(timings_.grid_update);
+        if constexpr (multi_field) resolve_contact(multi_field::pass::decide);
+        lap(timings_.contact);
+        grid_to_particles(dt, true);  // with the re-map's scatter (docs/physics.md section 1, step 4)
+        nodal_velocity(grid_.velocity);
+        grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
+        lap(timings_.grid_to_particle);
+        if constexpr (multi_field) resolve_contact(multi_field::pass::remap);
+        lap(timings_.contact);
+        end_step(dt, true, lap);
+    }
+
+    // USL: P2G, grid update, contact, G2P, and the stress from the updated grid velocities.
+    void usl_step(real dt, phase_clock& lap) {
+        scatter<true>();
+        if constexpr (multi_field) find_shared_nodes();
+        lap(timings_.particle_to_grid);
+        update_grid_momentum(dt, true);
+        lap(timings_.grid_update);
+        if constexpr (multi_field) resolve_contact(multi_field::pass::decide);
+        lap(timings_.contact);
+        grid_to_particles(dt, false);
+        lap(timings_.grid_to_particle);
+        end_step(dt, true, lap);
+    }
+
+    // USF: P2G of mass and momentum, the stress from the start-of-step velocities, then its
+    // forces, grid update, contact and G2P.
+    void usf_step(real dt, phase_clock& lap) {
+        // With contact it also maps the forces of the current stress: they decide where contact
+        // acts in this step (multi_field::pass::trial).
+        if constexpr (multi_field) scatter<true>();
+        else scatter<false>();
+        if constexpr (multi_field) find_shared_nodes();
+        lap(timings_.particle_to_grid);
+        nodal_velocity(grid_.velocity_old);
+        grid_.velocity = grid_.velocity_old;
+        grid_.apply_walls(grid_.velocity);
+        lap(timings_.grid_update);
+        // The stress sees the same contact as the momentum update, or it would strain the
+        // bodies through each other: this pass decides where contact acts in this step.
+        if constexpr (multi_field) {
+            resolve_contact(multi_field::pass::trial);
+            std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
         }
-        update_grid_momentum(dt, !usf);
+        lap(timings_.contact);
+        if (options_.volumetric_average) average_volumetric_rates(grid_.velocity);
+        update_material_points(dt, grid_.velocity);
+        lap(timings_.material_update);
+        if (options_.volumetric_average) average_mean_stress();
+        map_forces();
+        lap(timings_.particle_to_grid);
+        update_grid_momentum(dt, false);
         lap(timings_.grid_update);
         // USF keeps the decision its stress was computed with: releasing a node there, or
         // engaging one the stress saw free, makes the forces work on other velocities than the
         // ones that strained the material (an energy source: Bardenhagen contact from a gap
         // rebounded with 1.8x the energy it came in with).
-        if constexpr (multi_field) resolve_contact(usf ? multi_field::pass::keep : multi_field::pass::decide);
+        if constexpr (multi_field) resolve_contact(multi_field::pass::keep);
         lap(timings_.contact);
-        const bool musl = options_.scheme == update_scheme::musl;
-        grid_to_particles(dt, musl);
-        if (musl) {
-            // MUSL: the updated particle momenta mapped back to the grid (docs/physics.md section 1,
-            // step 4), scattered by grid_to_particles.
-            nodal_velocity(grid_.velocity);
-            grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
-            lap(timings_.grid_to_particle);
-            if constexpr (multi_field) resolve_contact(multi_field::pass::remap);
-            lap(timings_.contact);
-        } else {
-            lap(timings_.grid_to_particle);
-        }
+        grid_to_particles(dt, false);
+        lap(timings_.grid_to_particle);
+        end_step(dt, false, lap);
+    }
+
+    // What every scheme does last: the contact policy's particle hook, and the particle pass
+    // that updates the material (MUSL, USL) and checks every particle.
+    void end_step(real dt, bool update_materials, phase_clock& lap) {
         if constexpr (multi_field) contact_hook();
-        if (!usf && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
-        finish_step(dt, !usf);
+        if (update_materials && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
+        finish_step(dt, update_materials);
         lap(timings_.material_update);
     }
 
