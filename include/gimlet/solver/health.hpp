@@ -3,11 +3,14 @@
 /// \file
 /// The silent numerical guards a run met (solver::health()).
 
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/grid.hpp"
 #include "gimlet/eos/concepts.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <string>
 
 namespace gimlet {
@@ -34,5 +37,53 @@ struct health_events {
         return n;
     }
 };
+
+namespace detail {
+
+/// The guards a time step met (solver::stable_time_step), held until that step is taken.
+struct pending_health {
+    std::uint64_t step = 0;
+    bool valid = false;
+    std::array<std::uint64_t, health_events::kinds> count{};
+    std::array<std::ptrdiff_t, health_events::kinds> first{};
+
+    /// Into `health`, if they belong to step `now`; `describe(i)` names particle i.
+    template <class Describe>
+    void commit(health_events& health, std::uint64_t now, Describe describe) {
+        if (!valid || step != now) return;
+        valid = false;
+        for (std::size_t k = 0; k < health_events::kinds; ++k) {
+            if (count[k] == 0) continue;
+            health.count[k] += count[k];
+            if (health.first[k].empty()) health.first[k] = describe(std::size_t(first[k])) + ": " + health_events::what[k];
+        }
+    }
+};
+
+/// What particle_problem tests, without building its message (it runs for every particle and step).
+template <class P, Space S>
+[[nodiscard]] bool particle_healthy(const P& p, const grid<S>& g) {
+    const auto& x = p.template get<fields::position>();
+    return x.allFinite() && p.template get<fields::velocity>().allFinite() &&
+           p.template get<fields::stress>().allFinite() &&
+           std::isfinite(p.template get<fields::specific_internal_energy>()) &&
+           p.template get<fields::deformation_gradient>().determinant() > 0 && g.inside(x);
+}
+
+/// Why a particle stops the run (non-finite values, inverted, off the grid), or empty.
+template <class P, Space S>
+[[nodiscard]] std::string particle_problem(const P& p, const grid<S>& g) {
+    const auto& x = p.template get<fields::position>();
+    if (!x.allFinite()) return "position is not finite";
+    if (!p.template get<fields::velocity>().allFinite()) return "velocity is not finite";
+    if (!p.template get<fields::stress>().allFinite()) return "stress is not finite";
+    if (!std::isfinite(p.template get<fields::specific_internal_energy>())) return "internal energy is not finite";
+    const auto j = p.template get<fields::deformation_gradient>().determinant();
+    if (!(j > 0)) return "det F = " + detail::to_text(double(j)) + " <= 0 (inverted particle)";
+    if (!g.inside(x)) return "left the grid through a non-periodic boundary";
+    return {};
+}
+
+}  // namespace detail
 
 }  // namespace gimlet

@@ -748,15 +748,9 @@ private:
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
-        if (!pending_health_.valid || pending_health_.step != steps_) return;
-        pending_health_.valid = false;
-        for (std::size_t k = 0; k < health_events::kinds; ++k) {
-            if (pending_health_.count[k] == 0) continue;
-            health_.count[k] += pending_health_.count[k];
-            if (health_.first[k].empty())
-                health_.first[k] = describe_particle(particles_[std::size_t(pending_health_.first[k])], steps_,
-                                                     double(time_)) + ": " + health_events::what[k];
-        }
+        pending_health_.commit(health_, steps_, [&](std::size_t i) {
+            return describe_particle(particles_[i], steps_, double(time_));
+        });
     }
 
     // State set before the first step or changed between steps (by the user or a restart) is
@@ -783,33 +777,12 @@ private:
         if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
     }
 
-    // What problem() tests, without building its message (it runs for every particle and step).
-    [[nodiscard]] bool healthy(std::size_t i) const {
-        const auto p = particles_[i];
-        const auto& x = p.template get<fields::position>();
-        return x.allFinite() && p.template get<fields::velocity>().allFinite() &&
-               p.template get<fields::stress>().allFinite() &&
-               std::isfinite(p.template get<fields::specific_internal_energy>()) &&
-               p.template get<fields::deformation_gradient>().determinant() > 0 && grid_.inside(x);
-    }
-
-    [[nodiscard]] std::string problem(std::size_t i) const {
-        const auto p = particles_[i];
-        const auto& x = p.template get<fields::position>();
-        if (!x.allFinite()) return "position is not finite";
-        if (!p.template get<fields::velocity>().allFinite()) return "velocity is not finite";
-        if (!p.template get<fields::stress>().allFinite()) return "stress is not finite";
-        if (!std::isfinite(p.template get<fields::specific_internal_energy>())) return "internal energy is not finite";
-        const real j = p.template get<fields::deformation_gradient>().determinant();
-        if (!(j > 0)) return "det F = " + detail::to_text(double(j)) + " <= 0 (inverted particle)";
-        if (!grid_.inside(x)) return "left the grid through a non-periodic boundary";
-        return {};
-    }
+    [[nodiscard]] bool healthy(std::size_t i) const { return detail::particle_healthy(particles_[i], grid_); }
+    [[nodiscard]] std::string problem(std::size_t i) const { return detail::particle_problem(particles_[i], grid_); }
 
     [[noreturn]] void fail(std::size_t i, const std::string& what) const {
         throw numerical_error(describe_particle(particles_[i], steps_, double(time_)) + ": " + what);
     }
-
 
     solver_options<S> options_;
     grid<S> grid_;
@@ -820,13 +793,7 @@ private:
     detail::slab_schedule<std::max(Sh::stencil - 1, 1)> slabs_;
     step_timings timings_;
     health_events health_;
-    struct pending_health {
-        std::uint64_t step = 0;
-        bool valid = false;
-        std::array<std::uint64_t, health_events::kinds> count{};
-        std::array<std::ptrdiff_t, health_events::kinds> first{};
-    };
-    mutable pending_health pending_health_;  // stable_time_step's guards, until the step is taken
+    mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
     real mass_cutoff_ = 0;
     std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
     // Volumetric averaging, per body and cell: sums of V tr(L) and V, and of V tr(sigma)/dim
