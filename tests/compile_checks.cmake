@@ -90,7 +90,7 @@ endforeach()
 
 if(GIMLET_HEADER_CHECK_SOURCES)
     add_library(gimlet_header_check OBJECT ${GIMLET_HEADER_CHECK_SOURCES})
-    target_link_libraries(gimlet_header_check PRIVATE gimlet::gimlet gimlet_warnings)
+    target_link_libraries(gimlet_header_check PRIVATE ${GIMLET_TARGET} gimlet_warnings)
 endif()
 foreach(_layer IN LISTS _gimlet_layer_names)
     if(NOT _gimlet_layer_sources_${_layer})
@@ -134,7 +134,7 @@ foreach(src IN LISTS GIMLET_FAILTEST_SOURCES)
     foreach(kind IN ITEMS ok ko)
         set(target "failtest_${name}_${kind}")
         add_library(${target} OBJECT "${src}")
-        target_link_libraries(${target} PRIVATE gimlet::gimlet gimlet_warnings)
+        target_link_libraries(${target} PRIVATE ${GIMLET_TARGET} gimlet_warnings)
         if(kind STREQUAL "ok")
             target_compile_definitions(${target} PRIVATE GIMLET_FAILTEST_OK)
         endif()
@@ -211,6 +211,10 @@ endfunction()
 
 gimlet_package_test(package.consume "${CMAKE_CURRENT_SOURCE_DIR}/package" "${GIMLET_PACKAGE_BUILD}"
                     gimlet_package_consumer)
+# The same consumer linked to gimlet::gimlet alone (no OpenMP component): serial, and it must work.
+set_tests_properties(package.consume PROPERTIES FIXTURES_SETUP gimlet_consumer_built)
+add_test(NAME package.consume_serial COMMAND "${GIMLET_PACKAGE_BUILD}/gimlet_package_consumer_serial")
+set_tests_properties(package.consume_serial PROPERTIES LABELS package FIXTURES_REQUIRED gimlet_consumer_built)
 
 # The custom_material tutorial stands alone: built on its own against the installed package, as a
 # user who copies its folder out of the tree would (docs/concepts.md points to it).
