@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The solver's particle passes: the material update (docs/physics.md section 1, step 5),
+/// volumetric averaging, the step's last pass that updates and checks every particle, and the
+/// sort by cell.
+
+#include "gimlet/solver/solver.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <vector>
+
+namespace gimlet {
+
+// USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
+// section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::update_material_points(real dt, const std::vector<vector>& vg) {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    std::ptrdiff_t failed = n;
+    std::exception_ptr error;
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+        try {
+            update_material_point(static_cast<std::size_t>(k), dt, vg);
+        } catch (...) {
+            GIMLET_OMP(critical(gimlet_material_error))
+            if (k < failed) failed = k, error = std::current_exception();
+        }
+    }
+    if (error) std::rethrow_exception(error);
+}
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
+    auto p = particles_[i];
+    matrix L = matrix::Zero();
+    const std::size_t base = field_base(i);
+    stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[base + node] * g.transpose(); });
+    if (options_.volumetric_average) {
+        const std::size_t c = cell_key(i);
+        L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
+    }
+    gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
+}
+
+// ---- volumetric averaging (solver_options::volumetric_average) ------------------------
+
+// The particle's body and grid cell, as one index: the first node of its stencil (a cell for
+// a given shape) in its body's block of nodes.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+auto solver<S, Sh, M, C, ExtraFields>::cell_key(std::size_t i) const -> std::size_t {
+    std::size_t flat = 0;
+    for (int d = 0; d < dim; ++d) flat += std::size_t(stencils_[i].offset[d][0]);
+    return std::size_t(particles_.template column<fields::body>()[i]) * grid_.size() + flat;
+}
+
+// V_p sigma_p as the nodal forces take it: with volumetric averaging, the particle's in-plane
+// mean stress tr(sigma_p)/dim replaced by its cell's volume-weighted mean (B-bar: the power
+// these forces do on the grid velocities is then exactly the stress power of the averaged
+// rates, sum_p V_p sigma_p : L-bar_p, so averaging creates no energy).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+auto solver<S, Sh, M, C, ExtraFields>::force_stress(std::size_t i) const -> matrix {
+    const matrix& sig = particles_.template column<fields::stress>()[i];
+    const real v = current_volume(particles_[i]);
+    if (!options_.volumetric_average) return v * sig;
+    const std::size_t c = cell_key(i);
+    matrix out = sig;
+    out.diagonal().array() += cell_stress_[c] / cell_stress_volume_[c] - sig.trace() / real(dim);
+    return v * out;
+}
+
+// Per body and cell, the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::average_mean_stress() {
+    const std::size_t n = materials_.size() * grid_.size();
+    cell_stress_.assign(n, real(0));
+    cell_stress_volume_.assign(n, real(0));
+    const auto& sig = particles_.template column<fields::stress>();
+    for_each_particle_by_slab([&](std::size_t i) {
+        const real v = current_volume(particles_[i]);
+        const std::size_t c = cell_key(i);
+        cell_stress_[c] += v * sig[i].trace() / real(dim);
+        cell_stress_volume_[c] += v;
+    });
+}
+
+// Per body and cell, the sums of V_p tr L_p and of V_p over its particles, with L_p from the
+// velocities vg. A particle's cell lies in its own slab, so the slab colouring keeps the sums
+// free of races and in a fixed order.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::average_volumetric_rates(const std::vector<vector>& vg) {
+    const std::size_t n = materials_.size() * grid_.size();
+    cell_rate_.assign(n, real(0));
+    cell_volume_.assign(n, real(0));
+    for_each_particle_by_slab([&](std::size_t i) {
+        real rate = 0;
+        const std::size_t base = field_base(i);
+        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[base + node].dot(g); });
+        const real v = current_volume(particles_[i]);
+        const std::size_t c = cell_key(i);
+        cell_rate_[c] += v * rate;
+        cell_volume_[c] += v;
+    });
+}
+
+// The step's last particle pass: the constitutive update from the grid velocities (MUSL,
+// USL), then what check_particles does (wrap, stop on a broken particle). A material error
+// is reported before a failed check, each for the lowest-numbered particle, as when the
+// passes were separate.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::finish_step(real dt, bool update_materials) {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    auto& x = particles_.template column<fields::position>();
+    std::ptrdiff_t failed = n, first_bad = n;
+    std::exception_ptr error;
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        if (update_materials) {
+            try {
+                update_material_point(i, dt, grid_.velocity);
+            } catch (...) {
+                GIMLET_OMP(critical(gimlet_material_error))
+                if (k < failed) failed = k, error = std::current_exception();
+                continue;
+            }
+        }
+        grid_.wrap(x[i]);
+        if (!healthy(i)) first_bad = std::min(first_bad, k);
+    }
+    if (error) std::rethrow_exception(error);
+    ++steps_;
+    time_ += dt;
+    if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+}
+
+// ---- sorting ------------------------------------------------------------------------
+
+// Stable counting sort of the particles on the first node of their stencil (a cell of the
+// grid), applied to every field and to the stencils.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::sort_by_cell() {
+    const std::size_t n = particles_.size(), cells = grid_.size();
+    std::vector<std::size_t> start(cells + 1, 0), order(n);
+    auto key = [&](std::size_t i) {
+        int flat = 0;
+        for (int d = 0; d < dim; ++d) flat += stencils_[i].offset[d][0];
+        return static_cast<std::size_t>(flat);
+    };
+    for (std::size_t i = 0; i < n; ++i) ++start[key(i) + 1];
+    for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+    for (std::size_t i = 0; i < n; ++i) order[start[key(i)]++] = i;
+    auto permute = [&](auto& column) {
+        auto old = column;
+        for (std::size_t k = 0; k < n; ++k) column[k] = old[order[k]];
+    };
+    particles_.for_each_column([&](auto, auto& column) { permute(column); });
+    permute(stencils_);
+    permute(slabs_.slab_of());
+}
+
+}  // namespace gimlet

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The solver's transfers between particles and grid: P2G (mass, momentum, forces), the grid
+/// momentum update, and G2P with the light nodes' forces and the damping transfer
+/// (docs/physics.md section 1, steps 1-4; docs/equations.md).
+
+#include "gimlet/solver/solver.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace gimlet {
+
+// ---- transfers ----------------------------------------------------------------------
+
+// m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
+// f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+template <bool Forces>
+void solver<S, Sh, M, C, ExtraFields>::scatter() {
+    const auto& m = particles_.template column<fields::mass>();
+    const auto& v = particles_.template column<fields::velocity>();
+    [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
+    if constexpr (multi_field) std::fill(mass_gradient.begin(), mass_gradient.end(), vector::Zero());
+    const vector b = options_.body_force.template cast<real>();
+    const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
+    for_each_particle_by_slab([&](std::size_t i) {
+        const real mp = m[i];
+        const vector mv = mp * v[i];
+        const std::size_t base = field_base(i);
+        matrix vs = matrix::Zero();
+        vector mb = vector::Zero();
+        if constexpr (Forces) {
+            vs = force_stress(i);
+            mb = mp * b;
+            if constexpr (store_type::template has<fields::external_acceleration>)
+                mb += mp * particles_.template column<fields::external_acceleration>()[i];
+        }
+        stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
+            const std::size_t e = base + node;
+            grid_.mass[e] += w * mp;
+            grid_.momentum[e] += w * mv;
+            // G is the gradient with respect to the particle position, so sum m_p G_ip points
+            // out of the body (docs/physics.md section 3; Bardenhagen et al. 2000, eq. 16).
+            if constexpr (multi_field) mass_gradient[e] += mp * g;
+            if constexpr (Forces) {
+                grid_.force[e] -= vs * g;
+                if (loaded) grid_.force[e] += w * mb;
+            } else {
+                (void)g;
+            }
+        });
+    });
+}
+
+// f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
+// stress update.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::map_forces() {
+    const auto& m = particles_.template column<fields::mass>();
+    const vector b = options_.body_force.template cast<real>();
+    const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
+    for_each_particle_by_slab([&](std::size_t i) {
+        const matrix vs = force_stress(i);
+        vector mb = m[i] * b;
+        if constexpr (store_type::template has<fields::external_acceleration>)
+            mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
+        const std::size_t base = field_base(i);
+        stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
+            grid_.force[base + node] -= vs * g;
+            if (loaded) grid_.force[base + node] += w * mb;
+        });
+    });
+}
+
+// v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
+// (docs/physics.md section 1, step 2).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::nodal_velocity(std::vector<vector>& out) {
+    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        out[i] = grid_.mass[i] > 0 ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
+    }
+}
+
+// v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), (mv)_i += dt f_i,
+// v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
+// mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
+// particles that exerted it (grid_to_particles).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::update_grid_momentum(real dt, bool with_old_velocity) {
+    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        const real mi = grid_.mass[i];
+        if (with_old_velocity) grid_.velocity_old[i] = mi > 0 ? vector(grid_.momentum[i] / mi) : vector::Zero();
+        if (mi > mass_cutoff_) {
+            grid_.momentum[i] += dt * grid_.force[i];
+            grid_.velocity[i] = grid_.momentum[i] / mi;
+        } else {
+            grid_.velocity[i] = grid_.velocity_old[i];
+        }
+    }
+    grid_.apply_walls(grid_.velocity);
+}
+
+// ---- light nodes -------------------------------------------------------------------
+//
+// The FLIP update gives particle p the acceleration f_i / m_i of each node with weight S_ip,
+// which conserves momentum exactly: sum_p S_ip m_p f_i / m_i = f_i. A node under the mass
+// cut-off is never divided by, so its force would be dropped, and momentum lost with it
+// (6.7e-9 of a fragment's |m v| in the sparse-cloud hard case; 1e-12 of a body's in a
+// 700 m/s cavity collapse, where the GIMP gradient at a support's edge is not small where
+// the weight is). Each particle takes back its own part of it instead,
+// dv_p += dt f_ip / m_p with f_ip = S_ip m_p b - V_p sigma_p G_ip, as far as the walls leave
+// it free: sum_p m_p dv_p = dt f_i, and f_ip / m_p = S_ip b - sigma_p G_ip / rho_p is bounded
+// by the particle's own state (docs/equations.md, "Light nodes").
+
+// ---- the damping transfer (solver_options::pic_fraction) -----------------------------
+//
+// With S the grid-to-particle interpolation, the PIC velocity S v^{n+1} differs from the FLIP
+// velocity v_p + S (v^{n+1} - v^n) by d_p = v_p - S v^n, the part of the particle velocities
+// the grid cannot carry. The blend v_p' = v_FLIP - alpha d_p removes the kinetic energy
+// sum_p m_p (alpha d_p . v_FLIP - alpha^2 |d_p|^2 / 2), and each particle's internal energy
+// takes its share (docs/equations.md, "Damping transfer"). Writing v_FLIP = v_PIC + d_p, the
+// cross term sum_p m_p d_p . S v^{n+1} is not Galilean-invariant particle by particle (a body
+// at 700 m/s would heat and cool its particles by 700 |d_p|). Summed, it is
+// sum_i v_i^{n+1} . (m_i v_i^n - sum_j K_ij v_j^n), K_ij = sum_p S_ip m_p S_jp, and as K is
+// symmetric with rows summing to m_i (the weights sum to one), that is
+// sum_p m_p cov_p(v^{n+1}, v^n): the covariance of the new and old nodal velocities over the
+// particle's stencil, which is invariant, and close to their variance (so positive) at a
+// stable step. Each particle takes that share.
+
+// FLIP velocity update with the damping blend, and x_p += dt sum S_ip v_i^{n+1}
+// (docs/physics.md section 1, step 3), with the light nodes' forces above. With remap (MUSL),
+// each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
+// section 1, step 4): the gather reads grid velocities only and the scatter writes grid
+// momenta only.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
+    auto& x = particles_.template column<fields::position>();
+    auto& v = particles_.template column<fields::velocity>();
+    auto& energy = particles_.template column<fields::specific_internal_energy>();
+    const auto& m = particles_.template column<fields::mass>();
+    const real alpha = real(options_.pic_fraction);
+    const bool damping = alpha > 0;
+    const vector b = options_.body_force.template cast<real>();
+    auto update = [&](std::size_t i) {
+        vector v_pic = vector::Zero(), dv = vector::Zero();
+        const std::size_t base = field_base(i);
+        const auto& st = stencils_[i];
+        bool light = false;
+        st.for_each([&](std::size_t node, real w, const vector& g) {
+            const std::size_t e = base + node;
+            v_pic += w * grid_.velocity[e];
+            dv += w * (grid_.velocity[e] - grid_.velocity_old[e]);
+            // (A stencil node the particle neither weighs nor pushes is no light node of its.)
+            light = light || (!(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero()));
+        });
+        vector change = vector::Zero();
+        if (light) {
+            // Rare: only particles on a light node pay for this pass.
+            const matrix vs = force_stress(i);
+            vector mb = m[i] * b;
+            if constexpr (store_type::template has<fields::external_acceleration>)
+                mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
+            vector own = vector::Zero();
+            st.for_each([&](std::size_t node, real w, const vector& g) {
+                const std::size_t e = base + node;
+                if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
+            });
+            // Into the PIC velocity too, which then sums to the nodes' momenta exactly.
+            change = dt / m[i] * own;
+            dv += change;
+            v_pic += change;
+        }
+        x[i] += dt * v_pic;
+        const vector v_flip = v[i] + dv;
+        if (!damping) {
+            v[i] = v_flip;
+        } else {
+            vector old = vector::Zero();
+            st.for_each([&](std::size_t node, real w, const vector&) { old += w * grid_.velocity_old[base + node]; });
+            const vector fresh = v_pic - change;  // S v^{n+1}
+            real cov = 0;  // centred, so no cancellation of |v|^2
+            st.for_each([&](std::size_t node, real w, const vector&) {
+                cov += w * (grid_.velocity[base + node] - fresh).dot(grid_.velocity_old[base + node] - old);
+            });
+            const vector d = v_flip - v_pic;
+            // The particle's share of sum_p m_p d_p . v_PIC (the light nodes' part is its own).
+            const real cross = cov + d.dot(change);
+            v[i] = v_flip - alpha * d;
+            energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
+        }
+        if (remap) {
+            const vector mv = m[i] * v[i];
+            st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
+        }
+    };
+    if (remap) {
+        std::fill(grid_.momentum.begin(), grid_.momentum.end(), vector::Zero());
+        for_each_particle_by_slab(update);
+    } else {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k) update(static_cast<std::size_t>(k));
+    }
+}
+
+}  // namespace gimlet
