@@ -4,6 +4,7 @@
 /// Everything gimlet offers, in one include.
 
 #include "gimlet/contact/bardenhagen.hpp"
+#include "gimlet/contact/check.hpp"
 #include "gimlet/contact/concepts.hpp"
 #include "gimlet/contact/distance.hpp"
 #include "gimlet/contact/node.hpp"

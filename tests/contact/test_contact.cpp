@@ -406,8 +406,8 @@ TEST_CASE("a user's contact law cannot create energy", "[contact][verification]"
         const double built_in = release_energy_peak<distance_case>(st, 2.5, scheme);
         const double approach = release_energy_peak<approach_only_case>(st, 2.5, scheme);
         const double adding = release_energy_peak<energy_adding_case>(st, 2.5, scheme);
-        std::printf("release, %s: largest (KE + IE) / KE0: distance %.5f, approach-only (user) %.5f, "
-                    "energy-adding (user) %.5f\n", scheme_name(scheme), built_in, approach, adding);
+        std::printf("release, %s: largest (KE + IE) / KE0: %s %.5f, %s %.5f, %s %.5f\n", scheme_name(scheme),
+                    distance_case::name, built_in, approach_only_case::name, approach, energy_adding_case::name, adding);
         CHECK(approach <= built_in + 1e-3);
         CHECK(adding <= built_in + 1e-3);
     }

@@ -164,6 +164,8 @@ static_assert(!gimlet::contact::Contact<user::law_not_const>);
 static_assert(!gimlet::contact::Contact<user::law_and_resolver>);
 static_assert(!gimlet::contact::Contact<user::law_2d_only>);
 static_assert(gimlet::contact::Law<gimlet::contact::distance> && gimlet::contact::Law<gimlet::contact::bardenhagen>);
+static_assert(gimlet::contact::check<gimlet::contact::distance>() && gimlet::contact::check<gimlet::contact::bardenhagen>() &&
+              gimlet::contact::check<gimlet::contact::single_field>());
 
 static_assert(gimlet::Field<user::heat>);
 static_assert(!gimlet::Field<user::unnamed_field>);

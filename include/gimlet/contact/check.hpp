@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// contact::check<C>(): a contact policy checked against contact::Contact, with each missing
+/// requirement named in plain words (docs/concepts.md, Contact).
+
+#include "gimlet/contact/concepts.hpp"
+
+#include <concepts>
+
+namespace gimlet::contact {
+
+namespace detail {
+template <class C>
+concept has_flag = requires {
+    { C::multi_field } -> std::convertible_to<bool>;
+};
+template <class C>
+concept has_fields = requires { typename C::required_fields; } && FieldList<typename C::required_fields>;
+template <class C, class S>
+concept in_contact_any = requires(C& c, const pair_view<S>& p) { c.in_contact(p); };
+template <class C, class S>
+concept in_contact_const = requires(const C& c, const pair_view<S>& p) {
+    { c.in_contact(p) } -> std::convertible_to<bool>;
+};
+template <class C, class S>
+concept resolve_any = requires(C& c, node_view<S>& n) { c.resolve(n); };
+template <class C, class S>
+concept resolve_const = requires(const C& c, node_view<S>& n) { c.resolve(n); };
+}  // namespace detail
+
+/// True if C is a contact policy (contact::Contact); otherwise the compiler stops here with one
+/// message per missing requirement. Put it after your policy:
+/// \code
+/// static_assert(gimlet::contact::check<my_contact>());
+/// \endcode
+template <class C>
+consteval bool check() {
+    using S2 = space<2, double>;
+    using S3 = space<3, double>;
+    static_assert(detail::has_flag<C>,
+                  "contact policy: needs `static constexpr bool multi_field` (true: one grid velocity field per "
+                  "body; false: one field for all, bodies stick where they meet)");
+    static_assert(detail::has_fields<C>,
+                  "contact policy: needs `using required_fields = gimlet::field_list<...>;` (field_list<> if it "
+                  "keeps no per-particle state)");
+    if constexpr (detail::has_flag<C>) {
+        if constexpr (C::multi_field) {
+            constexpr bool law = detail::in_contact_any<C, S2> || detail::in_contact_any<C, S3>;
+            constexpr bool resolver = detail::resolve_any<C, S2> || detail::resolve_any<C, S3>;
+            static_assert(law || resolver,
+                          "multi-field contact policy: needs `template <gimlet::Space S> bool in_contact(const "
+                          "gimlet::contact::pair_view<S>&) const` (a contact law), or the low-level `template "
+                          "<gimlet::Space S> void resolve(gimlet::contact::node_view<S>&) const`");
+            static_assert(!(law && resolver),
+                          "multi-field contact policy: has both in_contact and resolve; a policy is a contact law "
+                          "or a node resolver, not both");
+            if constexpr (law && !resolver) {
+                static_assert(!(detail::in_contact_any<C, S2> && !detail::in_contact_const<C, S2>) &&
+                                  !(detail::in_contact_any<C, S3> && !detail::in_contact_const<C, S3>),
+                              "contact law: in_contact must be const and return something convertible to bool (the "
+                              "framework asks it at many nodes, in any order, on a const policy)");
+                static_assert(detail::in_contact_any<C, S2> && detail::in_contact_any<C, S3>,
+                              "contact law: in_contact must accept 2-D and 3-D pair views (write it as `template "
+                              "<gimlet::Space S> bool in_contact(const gimlet::contact::pair_view<S>&) const`)");
+            }
+            if constexpr (resolver && !law) {
+                static_assert(!(detail::resolve_any<C, S2> && !detail::resolve_const<C, S2>) &&
+                                  !(detail::resolve_any<C, S3> && !detail::resolve_const<C, S3>),
+                              "node resolver: resolve must be const (keep counts in a contact law's tally instead)");
+                static_assert(detail::resolve_any<C, S2> && detail::resolve_any<C, S3>,
+                              "node resolver: resolve must accept 2-D and 3-D node views (write it as `template "
+                              "<gimlet::Space S> void resolve(gimlet::contact::node_view<S>&) const`)");
+            }
+        }
+    }
+    return Contact<C>;
+}
+
+}  // namespace gimlet::contact
