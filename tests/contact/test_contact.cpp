@@ -102,7 +102,8 @@ struct energy_adding {
     [[nodiscard]] typename Sp::vector impulse(const contact::pair_view<Sp>& pair) const {
         return -3 * pair.reduced_mass() * pair.approach() * pair.normal + pair.reduced_mass() * pair.slip();
     }
-    [[nodiscard]] double friction() const { return 1e9; }
+    [[nodiscard]] double friction() const { return mu; }
+    double mu = 1e9;
 };
 static_assert(contact::Law<approach_only> && contact::Law<energy_adding>);
 static_assert(contact::Contact<approach_only> && contact::Contact<energy_adding>);
@@ -410,6 +411,18 @@ TEST_CASE("a user's contact law cannot create energy", "[contact][verification]"
                     distance_case::name, built_in, approach_only_case::name, approach, energy_adding_case::name, adding);
         CHECK(approach <= built_in + 1e-3);
         CHECK(adding <= built_in + 1e-3);
+    }
+}
+
+// A law's friction() is checked when the solver is built: a negative or NaN coefficient would
+// push along the slip and create energy.
+TEST_CASE("a contact law with a negative or NaN friction coefficient is refused by name", "[contact][errors]") {
+    const auto sc = two_blocks(release_strip(4), elastic());
+    for (const double mu : {-0.5, std::numeric_limits<double>::quiet_NaN()}) {
+        energy_adding law;
+        law.mu = mu;
+        CHECK_THROWS_WITH((gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, energy_adding>(sc, {}, law)),
+                          Catch::Matchers::Contains("contact law friction()") && Catch::Matchers::Contains(">= 0"));
     }
 }
 

@@ -56,7 +56,7 @@ struct counting_contact {
 
     tally total;
 };
-static_assert(gimlet::contact::Contact<counting_contact>);
+static_assert(gimlet::contact::check<counting_contact>());
 
 }  // namespace
 

@@ -25,6 +25,18 @@ concept in_contact_const = requires(const C& c, const pair_view<S>& p) {
 };
 template <class C, class S>
 concept resolve_any = requires(C& c, node_view<S>& n) { c.resolve(n); };
+template <class C>
+concept friction_any = requires(C& c) { c.friction(); };
+template <class C>
+concept friction_const = requires(const C& c) {
+    { c.friction() } -> std::convertible_to<double>;
+};
+template <class C, class S>
+concept impulse_any = requires(C& c, const pair_view<S>& p) { c.impulse(p); };
+template <class C, class S>
+concept impulse_const = requires(const C& c, const pair_view<S>& p) {
+    { c.impulse(p) } -> std::convertible_to<typename S::vector>;
+};
 template <class C, class S>
 concept resolve_const = requires(const C& c, node_view<S>& n) { c.resolve(n); };
 }  // namespace detail
@@ -63,6 +75,22 @@ consteval bool check() {
                 static_assert(detail::in_contact_any<C, S2> && detail::in_contact_any<C, S3>,
                               "contact law: in_contact must accept 2-D and 3-D pair views (write it as `template "
                               "<gimlet::Space S> bool in_contact(const gimlet::contact::pair_view<S>&) const`)");
+
+                // Optional members: ignored if their form is wrong, so say so.
+                if constexpr (detail::friction_any<C>)
+                    static_assert(detail::friction_const<C>,
+                                  "contact law: friction() must be const and return a number (the Coulomb "
+                                  "coefficient, >= 0)");
+                if constexpr (detail::impulse_any<C, S2> || detail::impulse_any<C, S3>)
+                    static_assert(detail::impulse_const<C, S2> && detail::impulse_const<C, S3>,
+                                  "contact law: impulse must be const, accept 2-D and 3-D pair views and return the "
+                                  "momentum for body a (`template <gimlet::Space S> typename S::vector impulse(const "
+                                  "gimlet::contact::pair_view<S>&) const`)");
+                if constexpr (requires { typename C::tally; })
+                    static_assert(Counting<C, S2> && Counting<C, S3>,
+                                  "contact law: a `tally` needs `void count(tally&, const pair_view<S>&, const "
+                                  "pair_outcome<S>&) const` for 2-D and 3-D, a non-const `void record(const tally&)`, "
+                                  "and `tally& operator+=(const tally&)`");
             }
             if constexpr (resolver && !law) {
                 static_assert(!(detail::resolve_any<C, S2> && !detail::resolve_const<C, S2>) &&

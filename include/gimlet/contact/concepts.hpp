@@ -22,8 +22,13 @@ namespace gimlet::contact {
 /// - `impulse(pair)` (optional, default: stop the approach, Coulomb friction with `friction()`):
 ///   the momentum body a is to receive (b receives the opposite).
 /// The framework asks only about pairs that approach, and keeps the answer for the rest of the
-/// step: a pair engaged when the law decided has its normal constraint held through the step's
-/// later passes, and a pair left free stays free. It projects whatever `impulse` returns onto
+/// step: a pair engaged when the law decided has its normal constraint held (with Coulomb
+/// friction, `friction()`) through the step's later passes, where the law is not asked again; a
+/// pair left free stays free through the grid update (MUSL's re-mapping pass may engage it for
+/// the stress update only, if the law then finds it approaching and in contact). Under USF the
+/// law decides on the velocities the forces of the current stress would give, and the pairs it
+/// engages are held. So `impulse` sets the first correction of a pair; what holds it afterwards
+/// is the framework's constraint. It projects whatever `impulse` returns onto
 /// the dissipative set before applying it: a normal part that only removes approach (from none
 /// of it to all of it) and a tangential part that opposes the slip, stops at most all of it, and
 /// stays within mu times the normal part. So a law cannot create momentum or energy, whatever it
@@ -64,7 +69,8 @@ concept Contact = requires {
     requires FieldList<typename C::required_fields>;
 } && (!C::multi_field || (Law<C> != NodeResolver<C>));
 
-/// A law's optional friction coefficient (0 without one).
+/// A law's optional friction coefficient (0 without one). The solver refuses a law whose
+/// friction() is negative or not a number when it is built.
 template <class C>
 [[nodiscard]] double friction_of(const C& c) {
     if constexpr (requires { { c.friction() } -> std::convertible_to<double>; }) return double(c.friction());

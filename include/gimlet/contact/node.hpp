@@ -117,8 +117,11 @@ struct pair_view {
 /// What the framework did to one pair at a node (for a law's counters, contact::Counting).
 template <Space S>
 struct pair_outcome {
-    /// The momentum given to body a (body b took the opposite), after the projection onto the
-    /// dissipative set.
+    /// The momentum this correction gave body a (body b took the opposite), after the
+    /// projection onto the dissipative set: the correction where the law engaged the pair. (Under
+    /// USF that correction is measured on the velocities the current stress's forces would give,
+    /// and what is applied is the constraint that holds the pair; where three or more bodies
+    /// meet, later sweeps add to it.)
     typename S::vector impulse = S::vector::Zero();
 };
 

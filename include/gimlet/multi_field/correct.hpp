@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 namespace gimlet::multi_field {
 
@@ -79,7 +80,7 @@ struct no_tally {};
 /// bodies meet.
 /// - A kept pair (engaged earlier in the step) has its normal constraint held whether it
 ///   approaches or not, with Coulomb friction if it approaches: the law is not asked again.
-/// - An open pair that approaches is in contact if law.in_contact(pair) says so; it then takes
+/// - An open pair that approaches (only those) is in contact if law.in_contact(pair) says so; it then takes
 ///   the Bardenhagen et al. (2000) correction (its normal approach removed against the pair's
 ///   centre of mass, the slip reduced by at most mu times that: law.friction()), or, if the law
 ///   has impulse(pair), what it asks projected by dissipative_impulse. A pair whose correction
@@ -92,7 +93,10 @@ struct no_tally {};
 /// more than 1e-12 of the largest velocity there (at most 64 sweeps). Every correction removes
 /// kinetic energy, so the repetition converges and creates none.
 /// With a `tally` (contact::Counting), law.count(tally, pair, outcome) is called for every open
-/// pair the law engaged.
+/// pair the law engaged, with the momentum this correction gave body a. What the law's impulse
+/// sets is that first correction; a pair engaged is then held (its normal approach removed,
+/// Coulomb friction with law.friction()) wherever a later sweep or pass of the step sees it
+/// again: the framework keeps the law's decision, not the size of its impulse.
 template <Space S, contact::Law L, class Tally = detail::no_tally>
 void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) {
     using real = typename S::real;
@@ -124,14 +128,15 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                 pair.gap = node.gap(a, b);
                 pair.cell = node.cell;
                 pair.dt = node.dt;
-                if (!kept && !law.in_contact(pair)) continue;
                 const real m_ab = node.mass[a] + node.mass[b];
                 const vector v_cm = (node.momentum[a] + node.momentum[b]) / m_ab;
                 const vector relative = node.momentum[a] / node.mass[a] - v_cm;
+                // The law is asked about approaching pairs only (the sign of the approach as the
+                // correction measures it, against the pair's centre of mass).
+                if (!kept && (!(relative.dot(n) > real(0)) || !law.in_contact(pair))) continue;
                 vector dp = vector::Zero();  // to a
                 if constexpr (detail::has_impulse<L, S>) {
                     if (!kept) {
-                        if (!(pair.approach() > real(0))) continue;
                         dp = dissipative_impulse(pair, vector(law.impulse(pair)), mu);
                         if (!(-dp.dot(n) > real(0))) continue;  // stops no approach: not engaged
                     }

@@ -169,6 +169,9 @@ public:
                 for (std::size_t j = 0; j < k && pairs == 0; ++j)
                     if (p_[j] != p_before_[j]) pairs = ~std::uint64_t(0);
                 engaged_[s] = pairs;
+            } else if (pass == pass::remap) {
+                // Pairs the re-mapping engaged act on the stress only; the particle hook sees them.
+                engaged_[s] |= view.engaged_pairs;
             }
             if (trial) {
                 if (engaged_[s] == 0) continue;

@@ -88,6 +88,10 @@ public:
                 throw invalid_parameter("update scheme with a one-sided wall (boundary::wall) along " +
                                             std::string(detail::axis_name(d)),
                                         "usf", "musl or usl (USF with a one-sided wall creates energy)");
+        if constexpr (contact::Law<C>) {
+            const double mu = contact::friction_of(contact_);
+            require(mu >= 0.0, "contact law friction() (Coulomb coefficient mu)", mu, ">= 0 (infinity: no slip)");
+        }
         for (const auto& b : sc.bodies()) materials_.push_back(b.material);
         detail::seed_particles(sc, grid_, particles_);
         real heaviest = 0;
