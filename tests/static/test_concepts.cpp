@@ -167,6 +167,16 @@ static_assert(gimlet::contact::Law<gimlet::contact::distance> && gimlet::contact
 static_assert(gimlet::contact::check<gimlet::contact::distance>() && gimlet::contact::check<gimlet::contact::bardenhagen>() &&
               gimlet::contact::check<gimlet::contact::single_field>());
 
+// The checkers (docs/concepts.md) accept every built-in policy and the user policies above.
+static_assert(gimlet::strength::check<gimlet::strength::von_mises>() && gimlet::strength::check<gimlet::strength::linear_elastic>() &&
+              gimlet::strength::check<gimlet::strength::none>());
+static_assert(gimlet::eos::check<gimlet::eos::linear>() && gimlet::eos::check<gimlet::eos::mie_gruneisen<>>() &&
+              gimlet::eos::check<user::ideal_gas_like>());
+static_assert(gimlet::thermal::check<gimlet::thermal::none>() && gimlet::thermal::check<gimlet::thermal::isentrope_temperature>() &&
+              gimlet::thermal::check<gimlet::materials::paper_temperature>() && gimlet::thermal::check<user::heat_counter>());
+static_assert(gimlet::viscosity::check<gimlet::viscosity::none>() && gimlet::viscosity::check<gimlet::viscosity::bulk>() &&
+              gimlet::viscosity::check<user::constant_q>());
+
 static_assert(gimlet::Field<user::heat>);
 static_assert(!gimlet::Field<user::unnamed_field>);
 

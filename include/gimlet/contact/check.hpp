@@ -10,13 +10,11 @@
 
 namespace gimlet::contact {
 
-namespace detail {
+namespace check_detail {
 template <class C>
 concept has_flag = requires {
     { C::multi_field } -> std::convertible_to<bool>;
 };
-template <class C>
-concept has_fields = requires { typename C::required_fields; } && FieldList<typename C::required_fields>;
 template <class C, class S>
 concept in_contact_any = requires(C& c, const pair_view<S>& p) { c.in_contact(p); };
 template <class C, class S>
@@ -39,7 +37,7 @@ concept impulse_const = requires(const C& c, const pair_view<S>& p) {
 };
 template <class C, class S>
 concept resolve_const = requires(const C& c, node_view<S>& n) { c.resolve(n); };
-}  // namespace detail
+}  // namespace check_detail
 
 /// True if C is a contact policy (contact::Contact); otherwise the compiler stops here with one
 /// message per missing requirement. Put it after your policy:
@@ -50,16 +48,16 @@ template <class C>
 consteval bool check() {
     using S2 = space<2, double>;
     using S3 = space<3, double>;
-    static_assert(detail::has_flag<C>,
+    static_assert(check_detail::has_flag<C>,
                   "contact policy: needs `static constexpr bool multi_field` (true: one grid velocity field per "
                   "body; false: one field for all, bodies stick where they meet)");
-    static_assert(detail::has_fields<C>,
+    static_assert(declares_required_fields<C>,
                   "contact policy: needs `using required_fields = gimlet::field_list<...>;` (field_list<> if it "
                   "keeps no per-particle state)");
-    if constexpr (detail::has_flag<C>) {
+    if constexpr (check_detail::has_flag<C>) {
         if constexpr (C::multi_field) {
-            constexpr bool law = detail::in_contact_any<C, S2> || detail::in_contact_any<C, S3>;
-            constexpr bool resolver = detail::resolve_any<C, S2> || detail::resolve_any<C, S3>;
+            constexpr bool law = check_detail::in_contact_any<C, S2> || check_detail::in_contact_any<C, S3>;
+            constexpr bool resolver = check_detail::resolve_any<C, S2> || check_detail::resolve_any<C, S3>;
             static_assert(law || resolver,
                           "multi-field contact policy: needs `template <gimlet::Space S> bool in_contact(const "
                           "gimlet::contact::pair_view<S>&) const` (a contact law), or the low-level `template "
@@ -68,21 +66,21 @@ consteval bool check() {
                           "multi-field contact policy: has both in_contact and resolve; a policy is a contact law "
                           "or a node resolver, not both");
             if constexpr (law && !resolver) {
-                static_assert(!(detail::in_contact_any<C, S2> && !detail::in_contact_const<C, S2>) &&
-                                  !(detail::in_contact_any<C, S3> && !detail::in_contact_const<C, S3>),
+                static_assert(!(check_detail::in_contact_any<C, S2> && !check_detail::in_contact_const<C, S2>) &&
+                                  !(check_detail::in_contact_any<C, S3> && !check_detail::in_contact_const<C, S3>),
                               "contact law: in_contact must be const and return something convertible to bool (the "
                               "framework asks it at many nodes, in any order, on a const policy)");
-                static_assert(detail::in_contact_any<C, S2> && detail::in_contact_any<C, S3>,
+                static_assert(check_detail::in_contact_any<C, S2> && check_detail::in_contact_any<C, S3>,
                               "contact law: in_contact must accept 2-D and 3-D pair views (write it as `template "
                               "<gimlet::Space S> bool in_contact(const gimlet::contact::pair_view<S>&) const`)");
 
                 // Optional members: ignored if their form is wrong, so say so.
-                if constexpr (detail::friction_any<C>)
-                    static_assert(detail::friction_const<C>,
+                if constexpr (check_detail::friction_any<C>)
+                    static_assert(check_detail::friction_const<C>,
                                   "contact law: friction() must be const and return a number (the Coulomb "
                                   "coefficient, >= 0)");
-                if constexpr (detail::impulse_any<C, S2> || detail::impulse_any<C, S3>)
-                    static_assert(detail::impulse_const<C, S2> && detail::impulse_const<C, S3>,
+                if constexpr (check_detail::impulse_any<C, S2> || check_detail::impulse_any<C, S3>)
+                    static_assert(check_detail::impulse_const<C, S2> && check_detail::impulse_const<C, S3>,
                                   "contact law: impulse must be const, accept 2-D and 3-D pair views and return the "
                                   "momentum for body a (`template <gimlet::Space S> typename S::vector impulse(const "
                                   "gimlet::contact::pair_view<S>&) const`)");
@@ -93,10 +91,10 @@ consteval bool check() {
                                   "and `tally& operator+=(const tally&)`");
             }
             if constexpr (resolver && !law) {
-                static_assert(!(detail::resolve_any<C, S2> && !detail::resolve_const<C, S2>) &&
-                                  !(detail::resolve_any<C, S3> && !detail::resolve_const<C, S3>),
+                static_assert(!(check_detail::resolve_any<C, S2> && !check_detail::resolve_const<C, S2>) &&
+                                  !(check_detail::resolve_any<C, S3> && !check_detail::resolve_const<C, S3>),
                               "node resolver: resolve must be const (keep counts in a contact law's tally instead)");
-                static_assert(detail::resolve_any<C, S2> && detail::resolve_any<C, S3>,
+                static_assert(check_detail::resolve_any<C, S2> && check_detail::resolve_any<C, S3>,
                               "node resolver: resolve must accept 2-D and 3-D node views (write it as `template "
                               "<gimlet::Space S> void resolve(gimlet::contact::node_view<S>&) const`)");
             }

@@ -87,6 +87,10 @@ using field_union_t = typename detail::union_of<field_list<>, Lists...>::type;
 template <class T>
 concept FieldList = detail::is_field_list<T>::value;
 
+/// A policy declares `using required_fields = field_list<...>;` (for the checkers of each family).
+template <class T>
+concept declares_required_fields = requires { typename T::required_fields; } && FieldList<typename T::required_fields>;
+
 /// The value a new particle's field starts with: `Tag::initial<S>()` if given, else zero.
 template <Field Tag, Space S>
 [[nodiscard]] typename Tag::template type<S> field_initial_value() {
