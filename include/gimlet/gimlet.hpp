@@ -38,6 +38,7 @@
 #include "gimlet/scene/geometry.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/all.hpp"
+#include "gimlet/shape/check.hpp"
 #include "gimlet/strength/check.hpp"
 #include "gimlet/strength/concepts.hpp"
 #include "gimlet/strength/jaumann.hpp"

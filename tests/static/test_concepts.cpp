@@ -168,6 +168,9 @@ static_assert(gimlet::contact::check<gimlet::contact::distance>() && gimlet::con
               gimlet::contact::check<gimlet::contact::single_field>());
 
 // The checkers (docs/concepts.md) accept every built-in policy and the user policies above.
+static_assert(gimlet::shape::check<gimlet::shape::linear>() && gimlet::shape::check<gimlet::shape::ugimp>() &&
+              gimlet::shape::check<gimlet::shape::cpgimp>() && gimlet::shape::check<gimlet::shape::bspline_quadratic>() &&
+              gimlet::shape::check<gimlet::shape::bspline_cubic>() && gimlet::shape::check<user::nearest_node>());
 static_assert(gimlet::strength::check<gimlet::strength::von_mises>() && gimlet::strength::check<gimlet::strength::linear_elastic>() &&
               gimlet::strength::check<gimlet::strength::none>());
 static_assert(gimlet::eos::check<gimlet::eos::linear>() && gimlet::eos::check<gimlet::eos::mie_gruneisen<>>() &&
