@@ -168,6 +168,8 @@ static_assert(gimlet::contact::check<gimlet::contact::distance>() && gimlet::con
               gimlet::contact::check<gimlet::contact::single_field>());
 
 // The checkers (docs/concepts.md) accept every built-in policy and the user policies above.
+static_assert(gimlet::check_field<user::heat>() && gimlet::check_field<gimlet::fields::temperature>() &&
+              gimlet::check_field<gimlet::fields::velocity>());
 static_assert(gimlet::shape::check<gimlet::shape::linear>() && gimlet::shape::check<gimlet::shape::ugimp>() &&
               gimlet::shape::check<gimlet::shape::cpgimp>() && gimlet::shape::check<gimlet::shape::bspline_quadratic>() &&
               gimlet::shape::check<gimlet::shape::bspline_cubic>() && gimlet::shape::check<user::nearest_node>());

@@ -31,6 +31,20 @@ concept Field = requires {
     { Tag::name } -> std::convertible_to<const char*>;
 };
 
+/// True if Tag is a field tag (gimlet::Field); otherwise the compiler stops here with one
+/// message per missing requirement: `static_assert(gimlet::check_field<my_field>());`
+template <class Tag>
+consteval bool check_field() {
+    static_assert(requires { typename Tag::template type<space<2, double>>; } &&
+                      requires { typename Tag::template type<space<3, double>>; },
+                  "field tag: needs `template <class S> using type = ...;` (the value type per space, e.g. "
+                  "`typename S::real` or `typename S::vector`)");
+    static_assert(requires {
+        { Tag::name } -> std::convertible_to<const char*>;
+    }, "field tag: needs `static constexpr const char* name = \"...\";` (used in output and error messages)");
+    return Field<Tag>;
+}
+
 /// An ordered set of field tags.
 template <Field... Tags>
 struct field_list {
