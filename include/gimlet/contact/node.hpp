@@ -48,13 +48,16 @@ struct node_view {
     /// Most bodies at one node: their pairs must fit the 64-bit masks below. The solver stops a
     /// run with a numerical_error naming the node if more meet there.
     static constexpr std::size_t max_bodies = 11;
-    /// The bit of the pair of bodies a and b (in either order) in the masks below; 0 if a == b.
-    [[nodiscard]] std::uint64_t pair_bit(std::size_t a, std::size_t b) const noexcept {
+    /// The bit of the pair of bodies a and b (in either order) in the masks below, at a node of
+    /// `count` bodies; 0 if a == b.
+    [[nodiscard]] static std::uint64_t pair_bit(std::size_t count, std::size_t a, std::size_t b) noexcept {
         if (a == b) return 0;
         if (a > b) std::swap(a, b);
         const std::size_t index = a * (2 * count - a - 1) / 2 + (b - a - 1);  // (0,1), (0,2), ..., (1,2), ...
         return std::uint64_t(1) << index;
     }
+    /// The same at this node.
+    [[nodiscard]] std::uint64_t pair_bit(std::size_t a, std::size_t b) const noexcept { return pair_bit(count, a, b); }
     /// In: pairs whose normal constraint must hold in this pass without testing whether they
     /// approach. They are the pairs this step's deciding pass engaged, seen again by a later pass
     /// (MUSL's re-mapping; USF's stress velocities and grid update): the velocities can look

@@ -57,9 +57,9 @@ public:
     // normal, each pair's normal and each body's furthest particle centre along it
     // (contact::node_view::reach), from the positions at the start of the step. Only these
     // nodes take part in contact, and the masses do not change within a step.
-    template <class Stencils, class BodyOf, class ForEach>
+    template <class Stencils, class Bodies, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
-                           BodyOf body_of, ForEach&& for_each_particle) {
+                           const Bodies& body_of, ForEach&& for_each_particle) {
         const std::size_t nodes = grid.size(), fields_n = grid.field_count();
         shared_index_.assign(nodes, -1);
         shared_.clear(), shared_body_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
@@ -101,7 +101,7 @@ public:
         // Particles of one node are visited by one thread at a time (slab colouring), and a
         // maximum does not depend on the order: the result is the same for any thread count.
         for_each_particle([&](std::size_t i) {
-            const std::uint32_t body = body_of(i);
+            const std::uint32_t body = body_of[i];
             stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, const vector& r) {
                 const std::ptrdiff_t s = shared_index_[node];
                 if (s < 0) return;
@@ -201,13 +201,11 @@ public:
             const std::ptrdiff_t s = shared_index_[node];
             if (s < 0 || engaged_[std::size_t(s)] == 0) return;
             const shared_node& sn = shared_[std::size_t(s)];
-            contact::node_view<S> probe;
-            probe.count = sn.count;
             std::size_t a = 0;
             while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
             if (a == sn.count) return;
             for (std::size_t b = 0; b < sn.count; ++b)
-                if (engaged_[std::size_t(s)] & probe.pair_bit(a, b)) {
+                if (engaged_[std::size_t(s)] & contact::node_view<S>::pair_bit(sn.count, a, b)) {
                     info.engaged = true;
                     info.weight += w;
                     return;

@@ -280,10 +280,9 @@ private:
         grid_.clear();
     }
 
-    // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
-    // re-mapped to the grid, contact again (keeping the grid update's pairs), and the stress
-    // from the re-mapped velocities.
-    void musl_step(real dt, phase_clock& lap) {
+    // What MUSL and USL do first: P2G of mass, momentum and forces, the grid momentum update,
+    // and the contact pass that decides where contact acts in this step.
+    void grid_update_and_contact(real dt, phase_clock& lap) {
         scatter<true>();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
@@ -291,6 +290,13 @@ private:
         lap(timings_.grid_update);
         if constexpr (multi_field) resolve_contact(multi_field::pass::decide);
         lap(timings_.contact);
+    }
+
+    // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
+    // re-mapped to the grid, contact again (keeping the grid update's pairs), and the stress
+    // from the re-mapped velocities.
+    void musl_step(real dt, phase_clock& lap) {
+        grid_update_and_contact(dt, lap);
         grid_to_particles(dt, true);  // with the re-map's scatter (docs/physics.md section 1, step 4)
         nodal_velocity(grid_.velocity);
         grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
@@ -302,13 +308,7 @@ private:
 
     // USL: P2G, grid update, contact, G2P, and the stress from the updated grid velocities.
     void usl_step(real dt, phase_clock& lap) {
-        scatter<true>();
-        if constexpr (multi_field) find_shared_nodes();
-        lap(timings_.particle_to_grid);
-        update_grid_momentum(dt, true);
-        lap(timings_.grid_update);
-        if constexpr (multi_field) resolve_contact(multi_field::pass::decide);
-        lap(timings_.contact);
+        grid_update_and_contact(dt, lap);
         grid_to_particles(dt, false);
         lap(timings_.grid_to_particle);
         end_step(dt, true, lap);
@@ -411,11 +411,9 @@ private:
     // ---- multi-field contact (multi_field::exchange) --------------------------------------
 
     void find_shared_nodes() {
-        const std::size_t nodes = grid_.size();
-        exchange_.find_shared_nodes(
-            grid_, mass_cutoff_, steps_, double(time_), stencils_,
-            [&](std::size_t i) { return static_cast<std::uint32_t>(field_base(i) / nodes); },
-            [&](auto&& f) { for_each_particle_by_slab(f); });
+        exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
+                                    particles_.template column<fields::body>(),
+                                    [&](auto&& f) { for_each_particle_by_slab(f); });
     }
 
     void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
@@ -425,12 +423,11 @@ private:
     void contact_hook() {
         if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            const std::size_t nodes = grid_.size();
+            const auto& body = particles_.template column<fields::body>();
             GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
             for (std::ptrdiff_t k = 0; k < n; ++k) {
                 const auto i = static_cast<std::size_t>(k);
-                const auto body = static_cast<std::uint32_t>(field_base(i) / nodes);
-                const contact::particle_contact<S> info = exchange_.contact_of(body, stencils_[i]);
+                const contact::particle_contact<S> info = exchange_.contact_of(body[i], stencils_[i]);
                 contact_.after_contact(particles_[i], info);
             }
         }

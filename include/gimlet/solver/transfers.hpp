@@ -151,7 +151,7 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
     const bool damping = alpha > 0;
     const vector b = options_.body_force.template cast<real>();
     auto update = [&](std::size_t i) {
-        vector v_pic = vector::Zero(), dv = vector::Zero();
+        vector v_pic = vector::Zero(), dv = vector::Zero(), old = vector::Zero();  // old: S v^n, for the blend
         const std::size_t base = field_base(i);
         const auto& st = stencils_[i];
         bool light = false;
@@ -159,6 +159,7 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
             const std::size_t e = base + node;
             v_pic += w * grid_.velocity[e];
             dv += w * (grid_.velocity[e] - grid_.velocity_old[e]);
+            if (damping) old += w * grid_.velocity_old[e];
             // (A stencil node the particle neither weighs nor pushes is no light node of its.)
             light = light || (!(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero()));
         });
@@ -184,8 +185,6 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
         if (!damping) {
             v[i] = v_flip;
         } else {
-            vector old = vector::Zero();
-            st.for_each([&](std::size_t node, real w, const vector&) { old += w * grid_.velocity_old[base + node]; });
             const vector fresh = v_pic - change;  // S v^{n+1}
             real cov = 0;  // centred, so no cancellation of |v|^2
             st.for_each([&](std::size_t node, real w, const vector&) {
