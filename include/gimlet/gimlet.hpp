@@ -35,6 +35,8 @@
 #include "gimlet/io/pvd.hpp"
 #include "gimlet/io/vtk.hpp"
 #include "gimlet/materials/hmx.hpp"
+#include "gimlet/multi_field/check.hpp"
+#include "gimlet/multi_field/partition.hpp"
 #include "gimlet/scene/geometry.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/all.hpp"

@@ -711,7 +711,7 @@ TEMPLATE_LIST_TEST_CASE("the many-body correction at one node conserves momentum
     const std::array<vec, k> normal{vec(0, 1), vec(0.6, -0.8), vec(-0.8, -0.6), vec(1, 0)};
     std::array<double, k * k> reach{};
     reach.fill(-0.1 * 0.01);  // every pair 0.2 h apart: in contact for the distance switch
-    contact::node_view<S> node{k, ids.data(), mass.data(), p.data(), normal.data(), reach.data(), 0.01, 1e-4};
+    contact::node_view<S> node{k, ids.data(), ids.data(), mass.data(), p.data(), normal.data(), reach.data(), 0.01, 1e-4};
     vec before = vec::Zero();
     double scale = 0;
     for (std::size_t b = 0; b < k; ++b) before += p[b], scale = std::max(scale, p[b].norm());
@@ -741,7 +741,7 @@ TEMPLATE_LIST_TEST_CASE("the many-body correction at one node conserves momentum
 
 // Pair masks hold 64 pairs, so at most 11 bodies may share a node: 16 bodies, one particle
 // each, around one node stop the run with an error naming the node, not a silent wrong answer.
-TEST_CASE("more bodies at one node than contact handles stop the run, naming the node", "[contact][errors]") {
+TEST_CASE("more velocity fields at one node than contact handles stop the run, naming the node", "[contact][errors]") {
     const double h = 0.01;
     gimlet::grid_spec<S> gs;
     gs.lower = vec::Zero();
@@ -756,7 +756,7 @@ TEST_CASE("more bodies at one node than contact handles stop the run, naming the
     gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, contact::bardenhagen> sol(sc);
     REQUIRE(sol.particles().size() == 16);
     CHECK_THROWS_AS(sol.step(), gimlet::numerical_error);
-    CHECK_THROWS_WITH(sol.step(), Catch::Matchers::Contains("is shared by 16 bodies") &&
+    CHECK_THROWS_WITH(sol.step(), Catch::Matchers::Contains("is shared by 16 velocity fields") &&
                                       Catch::Matchers::Contains("at most 11 at one node") &&
                                       Catch::Matchers::Contains("grid node at (0.04, 0.04) m"));
 }

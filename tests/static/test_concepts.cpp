@@ -181,6 +181,7 @@ static_assert(gimlet::thermal::check<gimlet::thermal::none>() && gimlet::thermal
               gimlet::thermal::check<gimlet::materials::paper_temperature>() && gimlet::thermal::check<user::heat_counter>());
 static_assert(gimlet::viscosity::check<gimlet::viscosity::none>() && gimlet::viscosity::check<gimlet::viscosity::bulk>() &&
               gimlet::viscosity::check<user::constant_q>());
+static_assert(gimlet::multi_field::check<gimlet::multi_field::by_body>());
 
 static_assert(gimlet::Field<user::heat>);
 static_assert(!gimlet::Field<user::unnamed_field>);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// What a multi-field contact policy sees at one grid node shared by two or more bodies.
+/// What a multi-field contact policy sees at one grid node where two or more velocity fields
+/// have mass.
 
 #include "gimlet/core/space.hpp"
 
@@ -21,17 +22,20 @@ template <class Vector>
     return len > 0 ? Vector(d / len) : Vector(Vector::Zero());
 }
 
-/// One node where several bodies have mass (above the solver's cut-off). Arrays are indexed by
-/// the bodies present at this node, in increasing body id. A contact law (contact::Law) never
-/// sees it: the framework does (multi_field/correct.hpp), and so does a low-level policy
-/// (contact::NodeResolver), which corrects `momentum` itself.
+/// One node where several velocity fields have mass (above the solver's cut-off). A field is a
+/// body, or with a multi_field::Partition part of one (the particles of a body on one side of a
+/// closing void), so two fields of one body can touch. Arrays are indexed by the fields present
+/// at this node, in increasing field id; "body a" below means the field at index a. A contact
+/// law (contact::Law) never sees it: the framework does (multi_field/correct.hpp), and so does
+/// a low-level policy (contact::NodeResolver), which corrects `momentum` itself.
 template <Space S>
 struct node_view {
     using real = typename S::real;
     using vector = typename S::vector;
 
-    std::size_t count = 0;            ///< bodies present (>= 2)
-    const std::uint32_t* body = nullptr;  ///< their body ids
+    std::size_t count = 0;            ///< fields present (>= 2)
+    const std::uint32_t* field = nullptr;  ///< their field ids (the body ids with one field per body)
+    const std::uint32_t* body = nullptr;   ///< the body each field belongs to
     const real* mass = nullptr;       ///< m_i^b
     vector* momentum = nullptr;       ///< (mv)_i^b, in/out: the policy corrects it
     const vector* normal = nullptr;   ///< outward unit normal of each body: sum_p m_p G_ip, normalised
@@ -45,9 +49,9 @@ struct node_view {
     std::size_t node = 0;             ///< the node's index in the grid
     vector position = vector::Zero(); ///< the node's position (m)
 
-    /// Most bodies at one node: their pairs must fit the 64-bit masks below. The solver stops a
+    /// Most fields at one node: their pairs must fit the 64-bit masks below. The solver stops a
     /// run with a numerical_error naming the node if more meet there.
-    static constexpr std::size_t max_bodies = 11;
+    static constexpr std::size_t max_fields = 11;
     /// The bit of the pair of bodies a and b (in either order) in the masks below, at a node of
     /// `count` bodies; 0 if a == b.
     [[nodiscard]] static std::uint64_t pair_bit(std::size_t count, std::size_t a, std::size_t b) noexcept {
@@ -86,8 +90,8 @@ struct node_view {
     [[nodiscard]] bool open(std::size_t a, std::size_t b) const noexcept { return open_pairs & pair_bit(a, b); }
 };
 
-/// What a contact law (contact::Law) sees of one pair of bodies a and b at one grid node: read
-/// only. Its velocities are those of this pass at this moment (after the forces and the walls,
+/// What a contact law (contact::Law) sees of one pair of velocity fields a and b at one grid
+/// node (two bodies, or two fields of one body: contact::node_view): read only. Its velocities are those of this pass at this moment (after the forces and the walls,
 /// and after the corrections of the node's earlier pairs).
 template <Space S>
 struct pair_view {
@@ -96,7 +100,8 @@ struct pair_view {
 
     std::size_t node = 0;              ///< the node's index in the grid
     vector position = vector::Zero();  ///< the node's position (m)
-    std::uint32_t body_a = 0, body_b = 0;  ///< the two bodies' ids (body_a < body_b)
+    std::uint32_t field_a = 0, field_b = 0;  ///< the two fields' ids (field_a < field_b)
+    std::uint32_t body_a = 0, body_b = 0;    ///< the bodies they belong to (equal in self-contact)
     real mass_a = 0, mass_b = 0;       ///< their nodal masses m_i^a, m_i^b
     vector velocity_a = vector::Zero(), velocity_b = vector::Zero();  ///< their nodal velocities
     vector normal = vector::Zero();    ///< unit normal from a towards b (contact::pair_normal)

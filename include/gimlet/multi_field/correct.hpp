@@ -118,6 +118,8 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                 contact::pair_view<S> pair;
                 pair.node = node.node;
                 pair.position = node.position;
+                pair.field_a = node.field[a];
+                pair.field_b = node.field[b];
                 pair.body_a = node.body[a];
                 pair.body_b = node.body[b];
                 pair.mass_a = node.mass[a];

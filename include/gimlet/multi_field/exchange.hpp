@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The multi-field contact framework across the grid: which nodes several bodies share, their
-/// normals and gaps, the contact passes of a step and the pairs each keeps (docs/equations.md,
-/// Contact). The correction at one node is multi_field::correct (correct.hpp).
+/// The multi-field contact framework across the grid: which nodes several velocity fields share,
+/// their normals and gaps, the contact passes of a step and the pairs each keeps
+/// (docs/equations.md, Contact). The correction at one node is multi_field::correct
+/// (correct.hpp); which field a particle's mass goes to at a node, multi_field::Partition
+/// (partition.hpp).
 
 #include "gimlet/contact/concepts.hpp"
 #include "gimlet/contact/node.hpp"
@@ -23,7 +25,7 @@
 
 namespace gimlet::multi_field {
 
-// Which contact pass of a step this is. Each node records the pairs of bodies the deciding
+// Which contact pass of a step this is. Each node records the pairs of fields the deciding
 // pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
 // - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
 //   velocities after the forces of the current stress.
@@ -40,7 +42,7 @@ enum class pass { decide, remap, trial, keep };
 
 
 /// The state of multi-field contact in a solver: per field and node the mass gradient (the
-/// scatter fills it), and per step the shared nodes, their bodies' normals, each pair's normal
+/// scatter fills it), and per step the shared nodes, their fields' normals, each pair's normal
 /// and reach, and the pairs the deciding pass engaged.
 template <Space S, contact::Contact C>
 class exchange {
@@ -53,38 +55,42 @@ public:
     /// Per field and node, sum_p m_p G_ip: the scatter adds to it (zero it first).
     [[nodiscard]] std::vector<vector>& mass_gradient() noexcept { return mass_gradient_; }
 
-    // The nodes where two or more bodies have mass above the cut-off, with each body's outward
-    // normal, each pair's normal and each body's furthest particle centre along it
+    // The nodes where two or more fields have mass above the cut-off, with each field's outward
+    // normal, each pair's normal and each field's furthest particle centre along it
     // (contact::node_view::reach), from the positions at the start of the step. Only these
-    // nodes take part in contact, and the masses do not change within a step.
-    template <class Stencils, class Bodies, class ForEach>
+    // nodes take part in contact, and the masses do not change within a step. Field f belongs
+    // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
+    // each node of its stencil in turn, the index of the field entry its mass went to there
+    // (field * nodes + node).
+    template <class Stencils, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
-                           const Bodies& body_of, ForEach&& for_each_particle) {
+                           std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle) {
         const std::size_t nodes = grid.size(), fields_n = grid.field_count();
         shared_index_.assign(nodes, -1);
-        shared_.clear(), shared_body_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
+        shared_.clear(), shared_field_.clear(), shared_owner_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
         for (std::size_t node = 0; node < nodes; ++node) {
-            const std::size_t first = shared_body_.size();
+            const std::size_t first = shared_field_.size();
             for (std::size_t f = 0; f < fields_n; ++f)
-                if (grid.mass[f * nodes + node] > cutoff) shared_body_.push_back(static_cast<std::uint32_t>(f));
-            const std::size_t k = shared_body_.size() - first;
+                if (grid.mass[f * nodes + node] > cutoff) shared_field_.push_back(static_cast<std::uint32_t>(f));
+            const std::size_t k = shared_field_.size() - first;
             if (k < 2) {
-                shared_body_.resize(first);
+                shared_field_.resize(first);
                 continue;
             }
-            if (k > contact::node_view<S>::max_bodies) {
+            if (k > contact::node_view<S>::max_fields) {
                 std::string ids;
-                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_body_[first + j]);
+                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_field_[first + j]);
                 throw numerical_error("gimlet: step " + std::to_string(step) + " (t = " +
                                       gimlet::detail::to_text(time) + " s): grid node at " +
                                       gimlet::detail::format_position(grid.node_position(node)) + " is shared by " + std::to_string(k) +
-                                      " bodies (" + ids + "); multi-field contact handles at most " +
-                                      std::to_string(contact::node_view<S>::max_bodies) + " at one node");
+                                      " velocity fields (" + ids + "); multi-field contact handles at most " +
+                                      std::to_string(contact::node_view<S>::max_fields) + " at one node");
             }
             shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
             shared_.push_back({node, first, k, shared_pair_normal_.size()});
             for (std::size_t j = 0; j < k; ++j) {
-                const vector& g = mass_gradient_[shared_body_[first + j] * nodes + node];
+                shared_owner_.push_back(static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body));
+                const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
                 const real len = g.norm();
                 shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
             }
@@ -101,13 +107,15 @@ public:
         // Particles of one node are visited by one thread at a time (slab colouring), and a
         // maximum does not depend on the order: the result is the same for any thread count.
         for_each_particle([&](std::size_t i) {
-            const std::uint32_t body = body_of[i];
-            stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, const vector& r) {
+            auto entry = entries_of(i);
+            stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, real w, const vector& r) {
+                const std::size_t e = entry(node);  // asked at every node, in order
                 const std::ptrdiff_t s = shared_index_[node];
-                if (s < 0) return;
+                if (s < 0 || !(w > real(0))) return;  // a node the particle does not weigh
+                const std::size_t field = (e - node) / nodes;
                 const shared_node& sn = shared_[std::size_t(s)];
                 std::size_t a = 0;
-                while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+                while (a < sn.count && shared_field_[sn.first_field + a] != field) ++a;
                 if (a == sn.count) return;  // below the cut-off at this node
                 for (std::size_t b = 0; b < sn.count; ++b) {
                     if (b == a) continue;
@@ -118,7 +126,7 @@ public:
         });
     }
 
-    // At every node shared by two or more bodies, let the contact policy correct the bodies'
+    // At every node shared by two or more fields, let the contact policy correct the fields'
     // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
     void resolve(pass pass, grid<S>& grid, C& contact, real dt, real cutoff) {
         const std::size_t nodes = grid.size();
@@ -141,7 +149,7 @@ public:
             m_.resize(k), p_.resize(k), p_before_.resize(k);
             auto load = [&](const std::vector<vector>& velocity) {
                 for (std::size_t j = 0; j < k; ++j) {
-                    const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
+                    const std::size_t e = shared_field_[sn.first_field + j] * nodes + sn.node;
                     m_[j] = grid.mass[e];
                     p_[j] = grid.mass[e] * velocity[e];  // after walls
                 }
@@ -149,10 +157,11 @@ public:
             load(trial ? trial_velocity_ : grid.velocity);
             std::copy(p_.begin(), p_.end(), p_before_.begin());
             contact::node_view<S> view{k,
-                                       shared_body_.data() + sn.first_body,
+                                       shared_field_.data() + sn.first_field,
+                                       shared_owner_.data() + sn.first_field,
                                        m_.data(),
                                        p_.data(),
-                                       shared_normal_.data() + sn.first_body,
+                                       shared_normal_.data() + sn.first_field,
                                        shared_reach_.data() + sn.first_pair,
                                        grid.cell(),
                                        dt};
@@ -182,7 +191,7 @@ public:
                 resolve_node(view, contact, tally);
             }
             for (std::size_t j = 0; j < k; ++j) {
-                const std::size_t e = shared_body_[sn.first_body + j] * nodes + sn.node;
+                const std::size_t e = shared_field_[sn.first_field + j] * nodes + sn.node;
                 grid.velocity[e] = p_[j] / m_[j];
             }
         }
@@ -191,18 +200,20 @@ public:
         else (void)tally;
     }
 
-    /// What contact did to a particle of `body` with stencil `st` in this step
-    /// (contact::particle_contact): whether a node of its stencil held an engaged pair of its
-    /// body, and its weight there.
-    template <class Stencil>
-    [[nodiscard]] contact::particle_contact<S> contact_of(std::uint32_t body, const Stencil& st) const {
+    /// What contact did to a particle with stencil `st` and entry chooser `entry` (as in
+    /// find_shared_nodes) in this step (contact::particle_contact): whether a node of its
+    /// stencil held an engaged pair of its field there, and its weight on those nodes.
+    template <class Stencil, class Entry>
+    [[nodiscard]] contact::particle_contact<S> contact_of(Entry entry, const Stencil& st, std::size_t nodes) const {
         contact::particle_contact<S> info;
         st.for_each([&](std::size_t node, real w, const vector&) {
+            const std::size_t e = entry(node);  // asked at every node, in order
             const std::ptrdiff_t s = shared_index_[node];
             if (s < 0 || engaged_[std::size_t(s)] == 0) return;
+            const std::size_t field = (e - node) / nodes;
             const shared_node& sn = shared_[std::size_t(s)];
             std::size_t a = 0;
-            while (a < sn.count && shared_body_[sn.first_body + a] != body) ++a;
+            while (a < sn.count && shared_field_[sn.first_field + a] != field) ++a;
             if (a == sn.count) return;
             for (std::size_t b = 0; b < sn.count; ++b)
                 if (engaged_[std::size_t(s)] & contact::node_view<S>::pair_bit(sn.count, a, b)) {
@@ -238,18 +249,18 @@ private:
         }
     }
 
-    // Per field and node, the mass gradient; the nodes shared by two or more bodies
-    // (find_shared_nodes) with, per shared node, its bodies and their normals (shared_body_,
-    // shared_normal_ from first_body), its pairs' normals and reaches (count x count from
-    // first_pair) and the pairs engaged by the step's deciding pass; scratch space for one
-    // node's masses and momenta.
+    // Per field and node, the mass gradient; the nodes shared by two or more fields
+    // (find_shared_nodes) with, per shared node, its fields, their bodies and their normals
+    // (shared_field_, shared_owner_, shared_normal_ from first_field), its pairs' normals and
+    // reaches (count x count from first_pair) and the pairs engaged by the step's deciding pass;
+    // scratch space for one node's masses and momenta.
     struct shared_node {
-        std::size_t node, first_body, count, first_pair;
+        std::size_t node, first_field, count, first_pair;
     };
     std::vector<vector> mass_gradient_;
     std::vector<std::ptrdiff_t> shared_index_;
     std::vector<shared_node> shared_;
-    std::vector<std::uint32_t> shared_body_;
+    std::vector<std::uint32_t> shared_field_, shared_owner_;
     std::vector<vector> shared_normal_, shared_pair_normal_;
     std::vector<real> shared_reach_;
     std::vector<std::uint64_t> engaged_;

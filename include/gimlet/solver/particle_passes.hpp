@@ -16,8 +16,8 @@ namespace gimlet {
 
 // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
 // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::update_material_points(real dt, const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::update_material_points(real dt, const std::vector<vector>& vg) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     std::ptrdiff_t failed = n;
     std::exception_ptr error;
@@ -33,12 +33,12 @@ void solver<S, Sh, M, C, ExtraFields>::update_material_points(real dt, const std
     if (error) std::rethrow_exception(error);
 }
 
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
     matrix L = matrix::Zero();
-    const std::size_t base = field_base(i);
-    stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[base + node] * g.transpose(); });
+    auto at = entries(i);
+    stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[at(node)] * g.transpose(); });
     if (options_.volumetric_average) {
         const std::size_t c = cell_key(i);
         L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
@@ -48,21 +48,24 @@ void solver<S, Sh, M, C, ExtraFields>::update_material_point(std::size_t i, real
 
 // ---- volumetric averaging (solver_options::volumetric_average) ------------------------
 
-// The particle's body and grid cell, as one index: the first node of its stencil (a cell for
-// a given shape) in its body's block of nodes.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-auto solver<S, Sh, M, C, ExtraFields>::cell_key(std::size_t i) const -> std::size_t {
+// The particle's body (or with a partition, its field at that node) and grid cell, as one
+// index: the first node of its stencil (a cell for a given shape) in its block of nodes. Two
+// bodies, or two fields of one body, are never averaged together.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::cell_key(std::size_t i) const -> std::size_t {
     std::size_t flat = 0;
     for (int d = 0; d < dim; ++d) flat += std::size_t(stencils_[i].offset[d][0]);
-    return std::size_t(particles_.template column<fields::body>()[i]) * grid_.size() + flat;
+    std::size_t block = particles_.template column<fields::body>()[i];
+    if constexpr (fields_per_body > 1) block = block * fields_per_body + sides_[i][0];
+    return block * grid_.size() + flat;
 }
 
 // V_p sigma_p as the nodal forces take it: with volumetric averaging, the particle's in-plane
 // mean stress tr(sigma_p)/dim replaced by its cell's volume-weighted mean (B-bar: the power
 // these forces do on the grid velocities is then exactly the stress power of the averaged
 // rates, sum_p V_p sigma_p : L-bar_p, so averaging creates no energy).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-auto solver<S, Sh, M, C, ExtraFields>::force_stress(std::size_t i) const -> matrix {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::force_stress(std::size_t i) const -> matrix {
     const matrix& sig = particles_.template column<fields::stress>()[i];
     const real v = current_volume(particles_[i]);
     if (!options_.volumetric_average) return v * sig;
@@ -72,10 +75,10 @@ auto solver<S, Sh, M, C, ExtraFields>::force_stress(std::size_t i) const -> matr
     return v * out;
 }
 
-// Per body and cell, the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::average_mean_stress() {
-    const std::size_t n = materials_.size() * grid_.size();
+// Per body (or field) and cell (cell_key), the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::average_mean_stress() {
+    const std::size_t n = materials_.size() * fields_per_body * grid_.size();
     cell_stress_.assign(n, real(0));
     cell_stress_volume_.assign(n, real(0));
     const auto& sig = particles_.template column<fields::stress>();
@@ -87,18 +90,18 @@ void solver<S, Sh, M, C, ExtraFields>::average_mean_stress() {
     });
 }
 
-// Per body and cell, the sums of V_p tr L_p and of V_p over its particles, with L_p from the
+// Per body (or field) and cell (cell_key), the sums of V_p tr L_p and of V_p over its particles, with L_p from the
 // velocities vg. A particle's cell lies in its own slab, so the slab colouring keeps the sums
 // free of races and in a fixed order.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::average_volumetric_rates(const std::vector<vector>& vg) {
-    const std::size_t n = materials_.size() * grid_.size();
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std::vector<vector>& vg) {
+    const std::size_t n = materials_.size() * fields_per_body * grid_.size();
     cell_rate_.assign(n, real(0));
     cell_volume_.assign(n, real(0));
     for_each_particle_by_slab([&](std::size_t i) {
         real rate = 0;
-        const std::size_t base = field_base(i);
-        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[base + node].dot(g); });
+        auto at = entries(i);
+        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[at(node)].dot(g); });
         const real v = current_volume(particles_[i]);
         const std::size_t c = cell_key(i);
         cell_rate_[c] += v * rate;
@@ -110,8 +113,8 @@ void solver<S, Sh, M, C, ExtraFields>::average_volumetric_rates(const std::vecto
 // USL), then what check_particles does (wrap, stop on a broken particle). A material error
 // is reported before a failed check, each for the lowest-numbered particle, as when the
 // passes were separate.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::finish_step(real dt, bool update_materials) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::finish_step(real dt, bool update_materials) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     auto& x = particles_.template column<fields::position>();
     std::ptrdiff_t failed = n, first_bad = n;
@@ -141,8 +144,8 @@ void solver<S, Sh, M, C, ExtraFields>::finish_step(real dt, bool update_material
 
 // Stable counting sort of the particles on the first node of their stencil (a cell of the
 // grid), applied to every field and to the stencils.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::sort_by_cell() {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::sort_by_cell() {
     const std::size_t n = particles_.size(), cells = grid_.size();
     std::vector<std::size_t> start(cells + 1, 0), order(n);
     auto key = [&](std::size_t i) {

@@ -16,6 +16,7 @@
 #include "gimlet/material/update.hpp"
 #include "gimlet/core/particle_store.hpp"
 #include "gimlet/multi_field/exchange.hpp"
+#include "gimlet/multi_field/partition.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/solver/health.hpp"
@@ -46,11 +47,13 @@ namespace gimlet {
 /// \tparam C  the contact policy (contact::Contact).
 /// \tparam ExtraFields fields the user wants stored besides the policies' (their own tags for
 ///         observers, or fields::external_acceleration for a per-particle body force).
+/// \tparam Part with multi-field contact, how each body is divided among velocity fields at the
+///         nodes (multi_field::Partition; default one field per body).
 ///
 /// The particle store holds exactly the union of the fields the policies declare; a policy
 /// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
-          FieldList ExtraFields = field_list<>>
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
 class solver {
 public:
     using space_type = S;
@@ -61,11 +64,18 @@ public:
     using shape_type = Sh;
     using material_type = M;
     using contact_type = C;
-    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields, typename C::required_fields, ExtraFields>;
+    using partition_type = Part;
+    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields,
+                                          typename C::required_fields, typename Part::required_fields, ExtraFields>;
     using store_type = particle_store<S, particle_fields>;
     static constexpr int dim = S::dim;
 
     static constexpr bool multi_field = C::multi_field;
+    static constexpr std::size_t fields_per_body = Part::fields_per_body;
+    // Fields of one body that no contact keeps apart would pass through each other.
+    static_assert(multi_field || fields_per_body == 1,
+                  "gimlet::solver: a partition with several fields per body needs a multi-field contact policy");
+    static_assert(fields_per_body <= 255, "gimlet::solver: a partition may have at most 255 fields per body");
 
 private:
     using particle_ref = gimlet::particle_ref<store_type>;
@@ -75,8 +85,10 @@ public:
     /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
     /// the grid, overlapping bodies or a body with no particles.
     /// \param contact the contact policy's parameters (e.g. friction).
-    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{})
-        : options_(options), grid_(sc.grid(), Sh::stencil), contact_(contact) {
+    /// \param partition the partition's parameters (multi_field::Partition).
+    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{},
+                    const Part& partition = Part{})
+        : options_(options), grid_(sc.grid(), Sh::stencil), contact_(contact), partition_(partition) {
         options_.validate();
         require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
         // USF strains with the start-of-step velocities, and a one-sided wall decided there and
@@ -98,8 +110,9 @@ public:
         for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
         mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
         if constexpr (multi_field) {
-            // One velocity field per body (Bardenhagen et al. 2000); a single-field policy keeps one.
-            grid_.set_field_count(materials_.size());
+            // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
+            // them; a single-field policy keeps one.
+            grid_.set_field_count(materials_.size() * fields_per_body);
             exchange_.allocate(grid_.entries());
         }
         // Which components of a node's force the walls leave free (1) or take (0): the projection
@@ -186,6 +199,8 @@ public:
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
     /// The contact policy, with whatever it counted (contact::Counting).
     [[nodiscard]] const C& contact() const noexcept { return contact_; }
+    /// The partition of bodies into velocity fields (multi_field::Partition).
+    [[nodiscard]] const Part& partition() const noexcept { return partition_; }
     [[nodiscard]] real time() const noexcept { return time_; }
 
     /// Set the clock of a run resumed from saved particles (io/checkpoint.hpp): the simulated
@@ -218,11 +233,29 @@ private:
     // times less than a particle's: a team pays for itself only on large grids.
     static constexpr std::ptrdiff_t node_parallel_threshold = 32 * parallel_threshold;
 
-    // Where particle i's velocity field starts in the nodal arrays: its body's field with
-    // multi-field contact, the only field otherwise (a compile-time zero).
-    [[nodiscard]] std::size_t field_base(std::size_t i) const noexcept {
-        if constexpr (multi_field) return std::size_t(particles_.template column<fields::body>()[i]) * grid_.size();
-        else return (void)i, std::size_t(0);
+    // Where particle i's mass goes in the nodal arrays (fields x nodes) at each node of its
+    // stencil: entries(i) gives a chooser, called with the stencil's nodes in their order
+    // (stencil::for_each, for_each_offset: every node), that returns the index of the field entry. One field
+    // per body: its body's block, whatever the node; one field in all: the only block (a
+    // compile-time zero). With a partition: the side chosen at the start of the step
+    // (choose_fields), node by node.
+    struct fixed_entry {
+        std::size_t base;
+        [[nodiscard]] std::size_t operator()(std::size_t node) const noexcept { return base + node; }
+    };
+    struct chosen_entry {
+        std::size_t base, nodes;
+        const std::uint8_t* side;  // advanced node by node
+        [[nodiscard]] std::size_t operator()(std::size_t node) noexcept { return base + std::size_t(*side++) * nodes + node; }
+    };
+    [[nodiscard]] auto entries(std::size_t i) const noexcept {
+        if constexpr (!multi_field) {
+            return (void)i, fixed_entry{0};
+        } else {
+            const std::size_t body = particles_.template column<fields::body>()[i];
+            if constexpr (fields_per_body == 1) return fixed_entry{body * grid_.size()};
+            else return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), sides_[i].data()};
+        }
     }
 
     [[nodiscard]] int threads() const noexcept {
@@ -274,6 +307,10 @@ private:
         lap(timings_.particle_to_grid);
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
+        if constexpr (fields_per_body > 1) {
+            choose_fields();
+            lap(timings_.particle_to_grid);
+        }
         dt_ = dt;
         slabs_.bucket();
         if (options_.volumetric_average) average_mean_stress();
@@ -411,9 +448,34 @@ private:
     // ---- multi-field contact (multi_field::exchange) --------------------------------------
 
     void find_shared_nodes() {
-        exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
-                                    particles_.template column<fields::body>(),
+        exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
+                                    [&](std::size_t i) { return entries(i); },
                                     [&](auto&& f) { for_each_particle_by_slab(f); });
+    }
+
+    // The partition's side of every particle at every node of its stencil, from the
+    // start-of-step state: the transfers of the whole step use them (entries).
+    void choose_fields() {
+        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+        sides_.resize(particles_.size());
+        std::ptrdiff_t first_bad = n;
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            const auto p = particles_[i];
+            std::size_t j = 0;
+            bool ok = true;
+            stencils_[i].for_each([&](std::size_t node, real, const vector&) {
+                const std::size_t side = partition_.side(std::as_const(p), node, grid_.node_position(node));
+                ok = ok && side < fields_per_body;
+                sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
+            });
+            if (!ok) first_bad = std::min(first_bad, k);
+        }
+        if (first_bad < n)
+            fail(static_cast<std::size_t>(first_bad),
+                 "the partition (multi_field::Partition::side) chose a field outside [0, " +
+                     std::to_string(fields_per_body) + ") at a node of its stencil");
     }
 
     void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
@@ -423,11 +485,10 @@ private:
     void contact_hook() {
         if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            const auto& body = particles_.template column<fields::body>();
             GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
             for (std::ptrdiff_t k = 0; k < n; ++k) {
                 const auto i = static_cast<std::size_t>(k);
-                const contact::particle_contact<S> info = exchange_.contact_of(body[i], stencils_[i]);
+                const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
                 contact_.after_contact(particles_[i], info);
             }
         }
@@ -483,11 +544,15 @@ private:
     mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
     real mass_cutoff_ = 0;
     std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
-    // Volumetric averaging, per body and cell: sums of V tr(L) and V, and of V tr(sigma)/dim
+    // Volumetric averaging, per body (or field) and cell: sums of V tr(L) and V, and of V tr(sigma)/dim
     // and V at the forces' time.
     std::vector<real> cell_rate_, cell_volume_, cell_stress_, cell_stress_volume_;
     bool state_touched_ = true;  // the scene's particles are checked before the first step
     C contact_;
+    Part partition_;
+    // Per particle and stencil node, the side of its body the partition chose this step
+    // (fields_per_body > 1 only).
+    std::vector<std::array<std::uint8_t, stencil_type::nodes>> sides_;
     real dt_ = 0;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;

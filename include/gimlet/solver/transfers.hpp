@@ -17,9 +17,9 @@ namespace gimlet {
 
 // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 template <bool Forces>
-void solver<S, Sh, M, C, ExtraFields>::scatter() {
+void solver<S, Sh, M, C, ExtraFields, Part>::scatter() {
     const auto& m = particles_.template column<fields::mass>();
     const auto& v = particles_.template column<fields::velocity>();
     [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
@@ -29,7 +29,7 @@ void solver<S, Sh, M, C, ExtraFields>::scatter() {
     for_each_particle_by_slab([&](std::size_t i) {
         const real mp = m[i];
         const vector mv = mp * v[i];
-        const std::size_t base = field_base(i);
+        auto at = entries(i);
         matrix vs = matrix::Zero();
         vector mb = vector::Zero();
         if constexpr (Forces) {
@@ -39,7 +39,7 @@ void solver<S, Sh, M, C, ExtraFields>::scatter() {
                 mb += mp * particles_.template column<fields::external_acceleration>()[i];
         }
         stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
-            const std::size_t e = base + node;
+            const std::size_t e = at(node);
             grid_.mass[e] += w * mp;
             grid_.momentum[e] += w * mv;
             // G is the gradient with respect to the particle position, so sum m_p G_ip points
@@ -57,8 +57,8 @@ void solver<S, Sh, M, C, ExtraFields>::scatter() {
 
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
 // stress update.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::map_forces() {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::map_forces() {
     const auto& m = particles_.template column<fields::mass>();
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
@@ -67,18 +67,19 @@ void solver<S, Sh, M, C, ExtraFields>::map_forces() {
         vector mb = m[i] * b;
         if constexpr (store_type::template has<fields::external_acceleration>)
             mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
-        const std::size_t base = field_base(i);
+        auto at = entries(i);
         stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
-            grid_.force[base + node] -= vs * g;
-            if (loaded) grid_.force[base + node] += w * mb;
+            const std::size_t e = at(node);
+            grid_.force[e] -= vs * g;
+            if (loaded) grid_.force[e] += w * mb;
         });
     });
 }
 
 // v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
 // (docs/physics.md section 1, step 2).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::nodal_velocity(std::vector<vector>& out) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>& out) {
     const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
     for (std::ptrdiff_t k = 0; k < n; ++k) {
@@ -91,8 +92,8 @@ void solver<S, Sh, M, C, ExtraFields>::nodal_velocity(std::vector<vector>& out) 
 // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
 // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
 // particles that exerted it (grid_to_particles).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::update_grid_momentum(real dt, bool with_old_velocity) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
     const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
     for (std::ptrdiff_t k = 0; k < n; ++k) {
@@ -141,8 +142,8 @@ void solver<S, Sh, M, C, ExtraFields>::update_grid_momentum(real dt, bool with_o
 // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
 // section 1, step 4): the gather reads grid velocities only and the scatter writes grid
 // momenta only.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields>
-void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool remap) {
     auto& x = particles_.template column<fields::position>();
     auto& v = particles_.template column<fields::velocity>();
     auto& energy = particles_.template column<fields::specific_internal_energy>();
@@ -152,11 +153,11 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
     const vector b = options_.body_force.template cast<real>();
     auto update = [&](std::size_t i) {
         vector v_pic = vector::Zero(), dv = vector::Zero(), old = vector::Zero();  // old: S v^n, for the blend
-        const std::size_t base = field_base(i);
         const auto& st = stencils_[i];
         bool light = false;
+        auto at = entries(i);  // one chooser per pass over the stencil
         st.for_each([&](std::size_t node, real w, const vector& g) {
-            const std::size_t e = base + node;
+            const std::size_t e = at(node);
             v_pic += w * grid_.velocity[e];
             dv += w * (grid_.velocity[e] - grid_.velocity_old[e]);
             if (damping) old += w * grid_.velocity_old[e];
@@ -171,8 +172,9 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
             if constexpr (store_type::template has<fields::external_acceleration>)
                 mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
             vector own = vector::Zero();
+            auto at_light = entries(i);
             st.for_each([&](std::size_t node, real w, const vector& g) {
-                const std::size_t e = base + node;
+                const std::size_t e = at_light(node);
                 if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
             });
             // Into the PIC velocity too, which then sums to the nodes' momenta exactly.
@@ -187,8 +189,10 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
         } else {
             const vector fresh = v_pic - change;  // S v^{n+1}
             real cov = 0;  // centred, so no cancellation of |v|^2
+            auto at_cov = entries(i);
             st.for_each([&](std::size_t node, real w, const vector&) {
-                cov += w * (grid_.velocity[base + node] - fresh).dot(grid_.velocity_old[base + node] - old);
+                const std::size_t e = at_cov(node);
+                cov += w * (grid_.velocity[e] - fresh).dot(grid_.velocity_old[e] - old);
             });
             const vector d = v_flip - v_pic;
             // The particle's share of sum_p m_p d_p . v_PIC (the light nodes' part is its own).
@@ -198,7 +202,8 @@ void solver<S, Sh, M, C, ExtraFields>::grid_to_particles(real dt, bool remap) {
         }
         if (remap) {
             const vector mv = m[i] * v[i];
-            st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[base + node] += w * mv; });
+            auto at_remap = entries(i);
+            st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[at_remap(node)] += w * mv; });
         }
     };
     if (remap) {

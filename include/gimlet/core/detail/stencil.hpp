@@ -39,25 +39,30 @@ struct stencil {
         }
     }
 
-    /// Call f(node, r) for every node of the stencil with a non-zero weight, where r = x_p - x_i
-    /// (m) is measured to that node (unwrapped across periodic seams).
+    /// Call f(node, weight, r) for every node of the stencil, in for_each's order, where
+    /// r = x_p - x_i (m) is measured to that node (unwrapped across periodic seams).
     template <class F>
     void for_each_offset(real h, F&& f) const {
         if constexpr (dim == 2) {
             for (int b = 0; b < W; ++b)
                 for (int a = 0; a < W; ++a)
-                    if (w[0][a] * w[1][b] > real(0))
-                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b]),
-                          vector((local[0] - real(a)) * h, (local[1] - real(b)) * h));
+                    f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b],
+                      vector((local[0] - real(a)) * h, (local[1] - real(b)) * h));
         } else {
             for (int c = 0; c < W; ++c)
                 for (int b = 0; b < W; ++b)
                     for (int a = 0; a < W; ++a)
-                        if (w[0][a] * w[1][b] * w[2][c] > real(0))
-                            f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]),
-                              vector((local[0] - real(a)) * h, (local[1] - real(b)) * h, (local[2] - real(c)) * h));
+                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]), w[0][a] * w[1][b] * w[2][c],
+                          vector((local[0] - real(a)) * h, (local[1] - real(b)) * h, (local[2] - real(c)) * h));
         }
     }
+
+    /// The number of nodes of a stencil.
+    static constexpr std::size_t nodes = [] {
+        std::size_t n = 1;
+        for (int d = 0; d < dim; ++d) n *= std::size_t(W);
+        return n;
+    }();
 
     /// Call f(node, weight, gradient) for every node of the stencil.
     template <class F>

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Velocity fields are not bodies: how a body's particles are divided among the grid's velocity
+/// fields, node by node (docs/concepts.md, "Velocity fields").
+
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/material_point.hpp"
+#include "gimlet/core/space.hpp"
+
+#include <concepts>
+#include <cstddef>
+
+namespace gimlet::multi_field {
+
+/// How multi-field contact divides each body among velocity fields. Contact acts between fields
+/// (contact::node_view), so a body split into several fields can touch itself where they meet:
+/// the self-contact of a closing void.
+/// - `fields_per_body` (k >= 1): body b owns the fields b k, ..., b k + k - 1 of every node.
+/// - `required_fields`: field_list of the per-particle state it reads.
+/// - with k > 1, `side(particle, node, position) const`: which of its body's k fields (an
+///   index in [0, k)) the particle scatters to at grid node `node` at `position` (m). The solver
+///   asks once per particle and stencil node at the start of each step, from the start-of-step
+///   state, and every transfer of the step uses the answers; a side out of range stops the run,
+///   naming the particle.
+/// A node where one field has mass is what one velocity field would be, whatever its index:
+/// splitting changes nothing until two fields of a body meet at a node.
+template <class P>
+concept Partition = requires {
+    { P::fields_per_body } -> std::convertible_to<std::size_t>;
+    typename P::required_fields;
+    requires FieldList<typename P::required_fields>;
+    requires P::fields_per_body >= 1;
+} && (P::fields_per_body == 1 ||
+      requires(const P& p, std::size_t node, const archetype_particle<2, P>& p2, const archetype_particle<3, P>& p3,
+               const typename space<2, double>::vector& x2, const typename space<3, double>::vector& x3) {
+          { p.side(p2, node, x2) } -> std::convertible_to<std::size_t>;
+          { p.side(p3, node, x3) } -> std::convertible_to<std::size_t>;
+      });
+
+/// One velocity field per body (Bardenhagen et al. 2000): the default. A body never touches
+/// itself; its particles share one field wherever they meet.
+struct by_body {
+    using required_fields = field_list<>;
+    static constexpr std::size_t fields_per_body = 1;
+};
+
+}  // namespace gimlet::multi_field
