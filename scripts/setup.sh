@@ -14,8 +14,9 @@ packages=(cmake ninja-build g++ libeigen3-dev catch2)
 case "${1:-}" in
     "") packages+=(python3-matplotlib python3-numpy) ;;  # the examples' figures
     # clang with its OpenMP and sanitizer runtimes (the asan-ubsan preset); python3 lists the
-    # slowest tests and units.
-    --tests) packages+=(clang libomp-dev libclang-rt-dev python3) ;;
+    # slowest tests and units; VTK's Python module reads our .vtp files back in the
+    # independent-reader test (tests/io/independent/).
+    --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9) ;;
     *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests]" >&2; exit 2 ;;
 esac
 

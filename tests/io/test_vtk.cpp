@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // VTK XML particle snapshots and the ParaView series: a known particle set is written, read
-// back by a parser of the format written here, and compared bit for bit.
+// back by a parser of the format written here, and compared bit for bit. (VTK's own reader
+// reads them in io.independent_readers: tests/io/independent/.)
 #include <gimlet/gimlet.hpp>
 
 #include "scratch_dir.hpp"
