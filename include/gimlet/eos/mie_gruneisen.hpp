@@ -44,16 +44,19 @@ public:
     static constexpr bool reads_shear_energy = Ref == energy_reference::internal_energy;
 
     /// \param density0 rho_0 (kg/m^3) > 0; \param sound_speed c_0 (m/s) > 0;
-    /// \param slope s of U_s = c_0 + s U_p, > 1 (the Hugoniot is convex; s <= 1 has no
-    /// singularity but no physical meaning for solids here); \param gruneisen Gamma >= 0;
+    /// \param slope s of U_s = c_0 + s U_p, in (1, 20] (the Hugoniot is convex; s <= 1 has no
+    /// singularity but no physical meaning for solids here; measured slopes lie below 5, and
+    /// at s ~ 1e16 the singular J = 1 - 1/s rounds to 1); \param gruneisen Gamma in [0, 20]
+    /// (solids lie below 4; J^Gamma overflows for huge Gamma);
     /// \param singularity_margin in (0, 1): stop when 1 - s eta reaches it.
     mie_gruneisen(double density0, double sound_speed, double slope, double gruneisen,
                   double singularity_margin = 0.05)
         : rho0_(density0), c0_(sound_speed), s_(slope), gamma_(gruneisen), margin_(singularity_margin) {
         require_positive("Mie-Grueneisen reference density rho0 (kg/m^3)", density0);
         require_positive("Mie-Grueneisen bulk sound speed c0 (m/s)", sound_speed);
-        require(std::isfinite(slope) && slope > 1.0, "Mie-Grueneisen Hugoniot slope s", slope, "> 1");
-        require_non_negative("Grueneisen parameter Gamma", gruneisen);
+        require(std::isfinite(slope) && slope > 1.0 && slope <= 20.0, "Mie-Grueneisen Hugoniot slope s", slope, "(1, 20]");
+        require(std::isfinite(gruneisen) && gruneisen >= 0.0 && gruneisen <= 20.0, "Grueneisen parameter Gamma",
+                gruneisen, "[0, 20]");
         require(singularity_margin > 0.0 && singularity_margin < 1.0, "Mie-Grueneisen singularity_margin",
                 singularity_margin, "(0, 1)");
     }

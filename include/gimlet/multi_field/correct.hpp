@@ -37,6 +37,27 @@ template <class Vector, class Real>
     return dv;
 }
 
+namespace detail {
+
+/// The tangential part of `wanted` for a pair whose normal impulse has magnitude `normal` >= 0:
+/// against the slip, at most all of it and at most mu times `normal` (mu = inf: no slip);
+/// zero if the pair does not press (normal = 0) or the law asks for nothing finite.
+template <Space S>
+[[nodiscard]] typename S::vector tangential_part(const contact::pair_view<S>& pair, const typename S::vector& wanted,
+                                                 typename S::real mu, typename S::real normal) {
+    using real = typename S::real;
+    using vector = typename S::vector;
+    const vector slip = pair.slip();
+    const real speed = slip.norm();
+    if (!(speed > real(0) && normal > real(0))) return vector::Zero();
+    const vector along = slip / speed;
+    const real limit = std::min(pair.reduced_mass() * speed, mu * normal);
+    const real tangential = std::clamp(real(-wanted.dot(along)), real(0), limit);
+    return std::isfinite(tangential) ? vector(-tangential * along) : vector(vector::Zero());
+}
+
+}  // namespace detail
+
 /// The momentum body a may receive from `wanted` (b receives the opposite), projected onto the
 /// dissipative set of the pair (contact::Law): along the normal, between none and all of the
 /// approach; across it, against the slip, at most all of the slip and at most mu times the
@@ -49,16 +70,24 @@ template <Space S>
     const real stop = pair.reduced_mass() * pair.approach();  // > 0: the pair approaches
     const real normal = std::clamp(real(-wanted.dot(pair.normal)), real(0), stop);
     if (!std::isfinite(normal)) return vector::Zero();  // a NaN impulse does nothing
-    vector out = -normal * pair.normal;
-    const vector slip = pair.slip();
-    const real speed = slip.norm();
-    if (speed > real(0) && normal > real(0)) {
-        const vector along = slip / speed;
-        const real limit = std::min(pair.reduced_mass() * speed, mu * normal);  // mu = inf: no slip
-        const real tangential = std::clamp(real(-wanted.dot(along)), real(0), limit);
-        if (std::isfinite(tangential)) out -= tangential * along;
-    }
-    return out;
+    return vector(-normal * pair.normal + detail::tangential_part(pair, wanted, mu, normal));
+}
+
+/// What holds a pair the step's deciding pass engaged, in a later pass (node_view::kept_pairs),
+/// for a law with its own impulse: the whole normal relative velocity removed (the constraint
+/// the stress or the forces were computed with, approaching or not), and while the pair
+/// approaches, the tangential part of what the law asks on these velocities (wanted), projected
+/// as in dissipative_impulse against that normal impulse. So the law's friction holds in every
+/// pass, not the framework's Coulomb rule: a frictionless impulse under a large friction()
+/// stuck the bodies in MUSL's re-mapping while their particles slid, and created 16 % energy.
+template <Space S>
+[[nodiscard]] typename S::vector held_impulse(const contact::pair_view<S>& pair, const typename S::vector& wanted,
+                                              typename S::real mu) {
+    using real = typename S::real;
+    using vector = typename S::vector;
+    const real stop = pair.reduced_mass() * pair.approach();  // < 0: a pull that holds a separating pair
+    return vector(-stop * pair.normal + (stop > real(0) ? detail::tangential_part(pair, wanted, mu, stop)
+                                                         : vector(vector::Zero())));
 }
 
 namespace detail {
@@ -141,9 +170,13 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                     if (!kept) {
                         dp = dissipative_impulse(pair, vector(law.impulse(pair)), mu);
                         if (!(-dp.dot(n) > real(0))) continue;  // stops no approach: not engaged
+                    } else {
+                        // The law's own friction on these velocities (asked only while they approach).
+                        const bool approaching = pair.approach() > real(0);
+                        dp = held_impulse(pair, approaching ? vector(law.impulse(pair)) : vector(vector::Zero()), mu);
                     }
                 }
-                if (kept || !detail::has_impulse<L, S>) {
+                if (!detail::has_impulse<L, S>) {
                     bool engaged = false;
                     const vector dv = coulomb_correction(relative, n, mu, kept, engaged);
                     if (!engaged) continue;
