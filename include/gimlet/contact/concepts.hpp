@@ -28,7 +28,8 @@ namespace gimlet::contact {
 /// the stress update only, if the law then finds it approaching and in contact). Under USF the
 /// law decides on the velocities the forces of the current stress would give, and the pairs it
 /// engages are held. So `impulse` sets the first correction of a pair; what holds it afterwards
-/// is the framework's constraint. It projects whatever `impulse` returns onto
+/// is the framework's normal constraint, with the tangential part of `impulse` asked again on
+/// each later pass's velocities (Coulomb with `friction()` without it). It projects whatever `impulse` returns onto
 /// the dissipative set before applying it: a normal part that only removes approach (from none
 /// of it to all of it) and a tangential part that opposes the slip, stops at most all of it, and
 /// stays within mu times the normal part. So a law cannot create momentum or energy, whatever it

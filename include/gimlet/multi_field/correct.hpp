@@ -123,9 +123,11 @@ struct no_tally {};
 /// kinetic energy, so the repetition converges and creates none.
 /// With a `tally` (contact::Counting), law.count(tally, pair, outcome) is called for every open
 /// pair the law engaged, with the momentum this correction gave body a. What the law's impulse
-/// sets is that first correction; a pair engaged is then held (its normal approach removed,
-/// Coulomb friction with law.friction()) wherever a later sweep or pass of the step sees it
-/// again: the framework keeps the law's decision, not the size of its impulse.
+/// sets is that first correction; a pair engaged is then held wherever a later sweep or pass of
+/// the step sees it again: its normal relative velocity removed, and its slip resisted by the
+/// tangential part of law.impulse(pair) on those velocities (held_impulse), or without
+/// impulse() by Coulomb friction with law.friction(). The framework keeps the law's decision
+/// and its friction, not the size of its normal impulse.
 template <Space S, contact::Law L, class Tally = detail::no_tally>
 void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) {
     using real = typename S::real;
