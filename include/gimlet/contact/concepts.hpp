@@ -24,8 +24,7 @@ namespace gimlet::contact {
 /// The framework asks only about pairs that approach, and keeps the answer for the rest of the
 /// step: a pair engaged when the law decided has its normal constraint held (with Coulomb
 /// friction, `friction()`) through the step's later passes, where the law is not asked again; a
-/// pair left free stays free through the grid update (MUSL's re-mapping pass may engage it for
-/// the stress update only, if the law then finds it approaching and in contact). Under USF the
+/// pair left free stays free for the rest of the step. Under USF the
 /// law decides on the velocities the forces of the current stress would give, and the pairs it
 /// engages are held. So `impulse` sets the first correction of a pair; what holds it afterwards
 /// is the framework's normal constraint, with the tangential part of `impulse` asked again on

@@ -68,9 +68,8 @@ struct node_view {
     /// separating there, and dropping the constraint that the stress or the forces were computed
     /// with creates energy (docs/equations.md, Contact).
     std::uint64_t kept_pairs = 0;
-    /// In: pairs the policy may engage if it finds them in contact (a deciding pass: all;
-    /// MUSL's re-mapping: those not kept; USF's constraint on the stress velocities and its grid
-    /// update: none).
+    /// In: pairs the policy may engage if it finds them in contact: all in a deciding pass,
+    /// none in the later passes of a step (a pair left free stays free).
     std::uint64_t open_pairs = ~std::uint64_t(0);
     /// Out: the pairs the policy corrected. The solver records them for the step's later
     /// passes; where a policy changes momenta without setting any, it records every pair.
