@@ -5,6 +5,7 @@
 /// requirement named in plain words (docs/concepts.md, Contact).
 
 #include "gimlet/contact/concepts.hpp"
+#include "gimlet/core/material_point.hpp"
 
 #include <concepts>
 
@@ -37,6 +38,12 @@ concept impulse_const = requires(const C& c, const pair_view<S>& p) {
 };
 template <class C, class S>
 concept resolve_const = requires(const C& c, node_view<S>& n) { c.resolve(n); };
+// An after_contact in any form: called on a non-const policy with an lvalue particle handle and
+// the info, or with the particle alone.
+template <class C, int D>
+concept hook_any = requires(C& c, archetype_particle<D, C>& p, const particle_contact<space<D, double>>& i) {
+    c.after_contact(p, i);
+} || requires(C& c, archetype_particle<D, C>& p) { c.after_contact(p); };
 }  // namespace check_detail
 
 /// True if C is a contact policy (contact::Contact); otherwise the compiler stops here with one
@@ -90,6 +97,13 @@ consteval bool check() {
                                   "pair_outcome<S>&) const` for 2-D and 3-D, a non-const `void record(const tally&)`, "
                                   "and `tally& operator+=(const tally&)`");
             }
+            // The per-particle hook is optional too: one the solver cannot call would be skipped.
+            if constexpr (check_detail::hook_any<C, 2> || check_detail::hook_any<C, 3>)
+                static_assert(ParticleHook<C, archetype_particle<2, C>, S2> && ParticleHook<C, archetype_particle<3, C>, S3>,
+                              "contact policy: after_contact must be `template <class P, gimlet::Space S> void "
+                              "after_contact(const P& particle, const gimlet::contact::particle_contact<S>& info) const` "
+                              "(const, the particle handle by value or const reference, 2-D and 3-D); the solver "
+                              "calls nothing else");
             if constexpr (resolver && !law) {
                 static_assert(!(check_detail::resolve_any<C, S2> && !check_detail::resolve_const<C, S2>) &&
                                   !(check_detail::resolve_any<C, S3> && !check_detail::resolve_const<C, S3>),

@@ -38,7 +38,8 @@ consteval bool check() {
                   "partition: needs `using required_fields = gimlet::field_list<...>;` (field_list<> if it reads "
                   "no per-particle state of its own)");
     if constexpr (check_detail::has_count<P> && declares_required_fields<P>) {
-        static_assert(P::fields_per_body >= 1, "partition: fields_per_body must be at least 1");
+        static_assert(P::fields_per_body >= 1 && P::fields_per_body <= 255,
+                      "partition: fields_per_body must be in [1, 255]");
         if constexpr (P::fields_per_body > 1) {
             constexpr bool side = check_detail::side_any<P, 2> || check_detail::side_any<P, 3>;
             static_assert(side,

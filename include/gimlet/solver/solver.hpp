@@ -3,6 +3,7 @@
 /// \file
 /// The explicit GIMP solver: policies composed at compile time into one step.
 
+#include "gimlet/contact/check.hpp"
 #include "gimlet/contact/concepts.hpp"
 #include "gimlet/contact/node.hpp"
 #include "gimlet/contact/single_field.hpp"
@@ -15,6 +16,7 @@
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/material/update.hpp"
 #include "gimlet/core/particle_store.hpp"
+#include "gimlet/multi_field/check.hpp"
 #include "gimlet/multi_field/exchange.hpp"
 #include "gimlet/multi_field/partition.hpp"
 #include "gimlet/scene/scene.hpp"
@@ -71,6 +73,9 @@ public:
     static constexpr int dim = S::dim;
 
     static constexpr bool multi_field = C::multi_field;
+    // A policy's optional members in a form the solver would skip (an after_contact that is not
+    // const, say) stop the build with the checker's sentence instead.
+    static_assert(contact::check<C>() && multi_field::check<Part>());
     static constexpr std::size_t fields_per_body = Part::fields_per_body;
     // Fields of one body that no contact keeps apart would pass through each other.
     static_assert(multi_field || fields_per_body == 1,
