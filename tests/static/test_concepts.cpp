@@ -182,6 +182,15 @@ static_assert(gimlet::thermal::check<gimlet::thermal::none>() && gimlet::thermal
 static_assert(gimlet::viscosity::check<gimlet::viscosity::none>() && gimlet::viscosity::check<gimlet::viscosity::bulk>() &&
               gimlet::viscosity::check<user::constant_q>());
 static_assert(gimlet::multi_field::check<gimlet::multi_field::by_body>());
+static_assert(gimlet::check_material<gimlet::elastic_material>() &&
+              gimlet::check_material<gimlet::materials::hmx_material<>>() &&
+              gimlet::check_material<gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy,
+                                                                     gimlet::materials::paper_temperature>>());
+static_assert(gimlet::scene::check_region<gimlet::scene::box<gimlet::space<2>>, gimlet::space<2>>() &&
+              gimlet::scene::check_region<gimlet::scene::ball<gimlet::space<3>>, gimlet::space<3>>() &&
+              gimlet::scene::check_region<gimlet::scene::difference<gimlet::scene::box<gimlet::space<2>>,
+                                                                    gimlet::scene::ball<gimlet::space<2>>>,
+                                          gimlet::space<2>>());
 
 static_assert(gimlet::Field<user::heat>);
 static_assert(!gimlet::Field<user::unnamed_field>);
