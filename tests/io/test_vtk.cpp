@@ -250,6 +250,20 @@ TEST_CASE("vtp: bad array names and values are refused by name", "[io][vtk][erro
     quoted.add("a<\"b\">&c", mass);
     quoted.write(dir / "q.vtp", known_particles<store2>(1));
     CHECK_THAT(vtp_file(dir / "q.vtp").xml, Contains("Name=\"a&lt;&quot;b&quot;&gt;&amp;c\""));
+    // What XML cannot hold even escaped is refused (found by fuzzing: VTK's reader refuses the
+    // whole file); UTF-8 text is kept as it is.
+    CHECK_THROWS_WITH(quoted.add(std::string("tab\there"), mass), Contains("VTK array name") && Contains("0x09"));
+    CHECK_THROWS_WITH(quoted.add(std::string("bell\x07"), mass), Contains("control character"));
+    CHECK_THROWS_WITH(quoted.add(std::string("latin1 \xe9t\xe9"), mass), Contains("not UTF-8"));
+    CHECK_THROWS_WITH(quoted.add(std::string("overlong \xc0\xaf"), mass), Contains("not UTF-8"));
+    CHECK_THROWS_WITH(quoted.add(std::string("surrogate \xed\xa0\x80"), mass), Contains("not UTF-8"));
+    quoted.add("\xcf\x83_yy (Pa)", mass);  // sigma_yy in UTF-8
+    quoted.write(dir / "u.vtp", known_particles<store2>(1));
+    CHECK_THAT(vtp_file(dir / "u.vtp").xml, Contains("Name=\"\xcf\x83_yy (Pa)\""));
+    gimlet::io::pvd_writer series(dir / "s.pvd");
+    CHECK_THROWS_WITH(series.add(0.0, dir / "bad\nname.vtp"), Contains("ParaView snapshot file name") &&
+                                                                   Contains("control character"));
+    CHECK(series.entries().empty());
 }
 
 TEST_CASE("vtp and pvd: an output path that cannot be written is refused, naming it", "[io][vtk][errors]") {

@@ -60,10 +60,15 @@ public:
 
     /// Record the snapshot `file` at `time` (s) and rewrite the .pvd. A relative `file` is
     /// taken relative to the working directory, like any path; the .pvd stores it relative to
-    /// its own directory. Throws invalid_parameter if the .pvd cannot be written.
+    /// its own directory. Throws invalid_parameter if the .pvd cannot be written, or for a file
+    /// name XML cannot hold (control characters, bytes that are not UTF-8).
     void add(double time, const std::filesystem::path& file) {
         require_finite("snapshot time (s)", time);
-        entries_.push_back({time, relative_to_series(file)});
+        std::string relative = relative_to_series(file);
+        if (const auto why = detail::xml_attribute_problem(relative); !why.empty())
+            throw invalid_parameter("ParaView snapshot file name", detail::quoted(relative),
+                                    "UTF-8 text without control characters (it holds " + why + ")");
+        entries_.push_back({time, std::move(relative)});
         rewrite();
     }
 

@@ -122,7 +122,8 @@ public:
     /// a floating-point scalar gives a scalar array, an integer (e.g. a body id) an Int32 array,
     /// an `S::vector` a 3-component vector (z = 0 in 2-D), an `S::matrix` or 3x3 tensor a
     /// 9-component tensor. `prec` applies to floating-point arrays.
-    /// Throws invalid_parameter for an empty or repeated name.
+    /// Throws invalid_parameter for an empty or repeated name, or one XML cannot hold (control
+    /// characters, bytes that are not UTF-8).
     template <class F>
         requires std::is_invocable_v<const F&, const particle&>
     vtp_writer& add(std::string name, F f, precision prec = precision::float64) {
@@ -190,6 +191,9 @@ private:
 
     void check_name(const std::string& name) const {
         if (name.empty()) throw invalid_parameter("VTK array name", "''", "a non-empty name");
+        if (const auto why = gimlet::io::detail::xml_attribute_problem(name); !why.empty())
+            throw invalid_parameter("VTK array name", detail::quoted(name),
+                                    "UTF-8 text without control characters (it holds " + why + ")");
         for (const auto& a : arrays_)
             if (a.name == name)
                 throw invalid_parameter("VTK array name", detail::quoted(name), "a name not used by another array");
