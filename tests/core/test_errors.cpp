@@ -130,6 +130,36 @@ TEST_CASE("numerical trouble names particle, position and step", "[core][errors]
         elastic_solver sol(sc);
         CHECK_THROWS_WITH(sol.step(0.01), Contains("det F") && Contains("inverted") && Contains("particle") && Contains("at ("));
     }
+    SECTION("a policy's own field going non-finite (found by fuzzing)") {
+        // The fuzzer's input, as it found it: a specific heat of 1.5e-315 J/(kg K) is positive and
+        // finite, so it is accepted, and the first step's heating made the temperature infinite
+        // while every core field stayed finite.
+        using hmx = gimlet::materials::hmx_material<>;
+        gimlet::grid_spec<S> gs;
+        gs.lower = S::vector(-0x1.999999999999ap-5, -0x1.2fd2c96c6306p-5);
+        gs.upper = S::vector(-0x1.98c7e28240b78p-5, -0x1.2f0112550a23ep-5);
+        gs.cell = 0x1.a36e2eb1c432dp-14;
+        gs.bc = {gimlet::boundary::wall, gimlet::boundary::wall};
+        gimlet::materials::hmx_constants c;
+        c.density = 0x1.b0b8787878788p+12;
+        c.young = 1e6;
+        c.poisson = 0;
+        c.yield_stress = 1e5;
+        c.sound_speed = 0x1.f943ad43ad43bp+8;
+        c.slope = 0x1.00c000c000cp+0;
+        c.gruneisen = 0;
+        c.specific_heat = 0x0.0000001p-1022;
+        gimlet::scene::scene<S, hmx> sc(gs);
+        sc.add_body(gimlet::scene::box<S>(S::vector(-0x1.996294a23b814p-5, -0x1.2f9bc47504edap-5),
+                                          S::vector(-0x1.9928b6b640514p-5, -0x1.2f61e68909bdap-5)),
+                    gimlet::materials::make_hmx(c), S::vector(-0x1.ffc3c3c3c3c3cp+9, -0x1.ffc3c3c3c3c3cp+9), 4);
+        gimlet::solver_options<S> opt;
+        opt.cfl = 0x1.999999999999ap-5;
+        opt.mass_cutoff = 0;
+        opt.body_force = S::vector(-1e6, -1e6);
+        gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::single_field> sol(sc, opt);
+        CHECK_THROWS_WITH(sol.step(), Contains("temperature is not finite") && Contains("particle 0") && Contains("step"));
+    }
 }
 
 TEST_CASE("a stable run stays finite with det F > 0", "[core][errors]") {
