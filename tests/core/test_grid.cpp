@@ -31,3 +31,29 @@ TEST_CASE("grid: the boundaries default to free, and a body reaching the end sto
     }
     CHECK_THAT(message, Contains("particle") && Contains("left the grid through a non-periodic boundary"));
 }
+
+// A periodic axis wraps any finite position into [lower, upper): one just outside by one
+// period, and one far away (found by fuzzing: at 7e21 m the shift by whole periods rounded off
+// by more than a period, and the weights' cell index overflowed an int).
+TEST_CASE("grid: a periodic axis wraps near and far positions into the domain", "[core]") {
+    using S = gimlet::space<2>;
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector(-1e-3, 0.0);
+    gs.upper = S::vector(0.5e-3, 1.5e-3);
+    gs.cell = 0.5e-3;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    const gimlet::grid<S> g(gs, 3);
+    for (const double x : {-1.2e-3, 0.7e-3, 0.5e-3, 12.34, -7.05e21, 4.4e300, -1.7e308}) {
+        S::vector p(x, x);
+        g.wrap(p);
+        INFO("x = " << x << " -> " << p.transpose());
+        CHECK(p[0] >= gs.lower[0]);
+        CHECK(p[0] < gs.upper[0]);
+        CHECK(p[1] >= gs.lower[1]);
+        CHECK(p[1] < gs.upper[1]);
+    }
+    S::vector p(0.7e-3, -0.2e-3);  // one period out: shifted by exactly one period
+    g.wrap(p);
+    CHECK(p[0] == 0.7e-3 - 1.5e-3);
+    CHECK(p[1] == -0.2e-3 + 1.5e-3);
+}

@@ -259,8 +259,15 @@ public:
         for (int d = 0; d < dim; ++d) {
             if (!periodic_[d]) continue;
             const real len = spec_.upper[d] - spec_.lower[d];
-            if (x[d] < spec_.lower[d]) x[d] += len * std::ceil((spec_.lower[d] - x[d]) / len);
-            if (x[d] >= spec_.upper[d]) x[d] -= len * std::floor((x[d] - spec_.lower[d]) / len);
+            if (std::abs(x[d] - spec_.lower[d]) < real(1e6) * len) {
+                if (x[d] < spec_.lower[d]) x[d] += len * std::ceil((spec_.lower[d] - x[d]) / len);
+                if (x[d] >= spec_.upper[d]) x[d] -= len * std::floor((x[d] - spec_.lower[d]) / len);
+            } else if (std::isfinite(x[d])) {
+                // Far away, where a shift by whole periods rounds off by more than a period (at
+                // 7e21 m, found by fuzzing a checkpoint) or overflows: the exact remainder.
+                const real r = std::fmod(x[d] - spec_.lower[d], len);
+                x[d] = spec_.lower[d] + (r < 0 ? r + len : r);
+            }
             if (x[d] >= spec_.upper[d]) x[d] = spec_.lower[d];  // round-off at the seam
         }
     }
