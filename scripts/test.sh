@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Configure, build and test every preset in GIMLET_TEST_PRESETS (default: "release asan-ubsan").
+# Configure, build and test every preset in GIMLET_TEST_PRESETS (default: "release asan-ubsan fuzz").
 # Goes on after a failing preset so that one run reports them all; exits non-zero if any failed.
 #
 # The CI budget (docs/testing.md): at the end it prints the seconds of each phase (setup, then
@@ -45,7 +45,7 @@ if ! timed setup bash scripts/setup.sh --tests; then
     exit 1
 fi
 
-presets="${GIMLET_TEST_PRESETS:-release asan-ubsan}"
+presets="${GIMLET_TEST_PRESETS:-release asan-ubsan fuzz}"
 
 for p in $presets; do
     echo "=== test.sh: preset $p ==="

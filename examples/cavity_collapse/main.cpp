@@ -23,6 +23,7 @@
 // input or I/O error, 3 stopped by the library (numerical trouble; the outputs so far are
 // written and summary.csv's status says why).
 #include "cavity_collapse/cavity_collapse.hpp"
+#include "cavity_collapse/flags.hpp"
 #include "common/cli.hpp"
 
 #include <algorithm>
@@ -353,38 +354,8 @@ int main(int argc, char** argv) try {
         else if (std::string(argv[i]) == "--no-figures") figures = false;
         else rest.push_back(argv[i]);
     }
-    example::cli args(static_cast<int>(rest.size()), rest.data(),
-                      "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
-                      "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
-                      "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] [--volumetric-average off|on] [--pic-fraction A] [--temperature isentrope|paper] [--threads N] [--quiet] [--no-figures] [--output DIR] "
-                      "[--checkpoint FILE --checkpoint-at-us T] [--restart FILE]");
-    settings s;
-    s.velocity = args.real("velocity", 300.0, 0.0, 2000.0);
-    s.radius = 1e-3 * args.real("radius", 10.0, 0.0, max_radius * 1e3, true);
-    s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
-    const std::string contact = args.choice("contact", "distance", {"single", "bardenhagen", "distance"});
-    s.contact = contact == "single" ? contact_kind::single
-                                    : (contact == "bardenhagen" ? contact_kind::bardenhagen : contact_kind::distance);
-    s.end = 1e-6 * args.real("end-us", 40.0, 0.0, 1000.0);
-    s.sample_every = 1e-6 * args.real("sample-every-us", 0.1, 0.0, 100.0);
-    s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
-    s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
-    s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
-    s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
-    s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
-    {
-        const std::string list = args.path("snapshots-after-contact-us");
-        std::stringstream ss(list);
-        for (std::string item; std::getline(ss, item, ',');) {
-            char* end = nullptr;
-            const double t = std::strtod(item.c_str(), &end);
-            if (end == item.c_str() || *end != '\0' || !std::isfinite(t))
-                throw std::invalid_argument("--snapshots-after-contact-us = " + list +
-                                            " is invalid; valid: comma-separated times in us, e.g. 4,8,14");
-            s.snapshots_after_contact.push_back(1e-6 * t);
-        }
-    }
-    s.threads = args.integer("threads", 0, 0, 256);
+    example::cli args(static_cast<int>(rest.size()), rest.data(), cavity_collapse::usage);
+    settings s = cavity_collapse::read_settings(args);
     run_files io;
     io.quiet = quiet;
     io.out = args.directory("output", "results/cavity_collapse");

@@ -54,6 +54,13 @@ TEST_CASE("grid and scene are validated", "[core][errors]") {
     gs = unit_grid();
     gs.upper[1] = -1.0;
     CHECK_THROWS_WITH((gimlet::grid<S>(gs, 3)), Contains("grid extent along y") && Contains("> 0"));
+    // More nodes than int node indices hold is refused before anything is allocated.
+    gs = unit_grid();
+    gs.cell = 1e-10;  // 1e10 cells along each axis
+    CHECK_THROWS_WITH((gimlet::grid<S>(gs, 3)), Contains("grid extent along x in cells") && Contains("node indices are int"));
+    gs = unit_grid();
+    gs.cell = 1e-5;  // 1e5 x 1e5 nodes
+    CHECK_THROWS_WITH((gimlet::grid<S>(gs, 3)), Contains("grid node count") && Contains("2147483647"));
 
     const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
     gimlet::scene::scene<S, gimlet::elastic_material> sc(unit_grid());

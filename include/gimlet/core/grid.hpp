@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,11 @@ public:
             require(nr >= 1 && std::abs(n - nr) <= 1e-6 * nr,
                     "grid extent along " + ax + " in cells ((upper - lower) / h)", n,
                     "a whole number >= 1 (make the extent a multiple of the cell size)");
+            // Node offsets and strides are int: a grid of more nodes cannot be indexed.
+            constexpr double most = double(std::numeric_limits<int>::max());
+            require(nr + 1 + 2 * ghost <= most, "grid extent along " + ax + " in cells ((upper - lower) / h)", n,
+                    "at most " + std::to_string(std::numeric_limits<int>::max() - 1 - 2 * ghost) +
+                        " (node indices are int)");
             cells_[d] = static_cast<int>(nr);
             periodic_[d] = spec.bc[d] == boundary::periodic;
             require(std::isfinite(spec.wall_friction[d]) && spec.wall_friction[d] >= 0,
@@ -111,6 +117,8 @@ public:
                 offset_[d] = ghost;
             }
             stride_[d] = static_cast<int>(count);
+            require(double(count) * double(nodes_[d]) <= double(std::numeric_limits<int>::max()), "grid node count",
+                    double(count) * double(nodes_[d]), "at most 2147483647 (node indices are int)");
             count *= static_cast<std::size_t>(nodes_[d]);
         }
         size_ = count;
