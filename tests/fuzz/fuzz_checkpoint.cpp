@@ -45,18 +45,6 @@ std::uint64_t fnv1a(const std::uint8_t* p, std::size_t n) {
     return h;
 }
 
-template <class Solver>
-bool finite_state(const Solver& s) {
-    bool ok = true;
-    s.particles().for_each_column([&](auto, const auto& column) {
-        for (const auto& v : column) {
-            if constexpr (std::is_floating_point_v<std::decay_t<decltype(v)>>) ok = ok && std::isfinite(v);
-            else if constexpr (requires { v.allFinite(); }) ok = ok && v.allFinite();
-        }
-    });
-    return ok;
-}
-
 }  // namespace
 
 // Writes a valid checkpoint of the prototype into the first corpus directory, so the corpus
@@ -100,6 +88,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         sol.step();
         stepped = true;
     });
-    if (stepped && !finite_state(sol)) fuzz::finding("a loaded checkpoint stepped to a non-finite state without an error");
+    if (stepped && !fuzz::finite_state(sol)) fuzz::finding("a loaded checkpoint stepped to a non-finite state without an error");
     return 0;
 }

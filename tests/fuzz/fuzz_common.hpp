@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <cmath>
+#include <type_traits>
 #include <algorithm>
 #include <exception>
 #include <filesystem>
@@ -94,6 +96,19 @@ void expect_clean(F&& f) {
         std::fprintf(stderr, "fuzz: unexpected exception of an unknown type\n");
         std::abort();
     }
+}
+
+// Whether every floating-point value of every particle field of a solver is finite.
+template <class Solver>
+bool finite_state(const Solver& s) {
+    bool ok = true;
+    s.particles().for_each_column([&](auto, const auto& column) {
+        for (const auto& v : column) {
+            if constexpr (std::is_floating_point_v<std::decay_t<decltype(v)>>) ok = ok && std::isfinite(v);
+            else if constexpr (requires { v.allFinite(); }) ok = ok && v.allFinite();
+        }
+    });
+    return ok;
 }
 
 [[noreturn]] inline void finding(const std::string& what) {

@@ -36,24 +36,12 @@ struct body_params {
     gimlet::materials::hmx_constants c;
 };
 
-template <class Solver>
-bool finite_state(const Solver& s) {
-    bool ok = true;
-    s.particles().for_each_column([&](auto, const auto& column) {
-        for (const auto& v : column) {
-            if constexpr (std::is_floating_point_v<std::decay_t<decltype(v)>>) ok = ok && std::isfinite(v);
-            else if constexpr (requires { v.allFinite(); }) ok = ok && v.allFinite();
-        }
-    });
-    return ok;
-}
-
 template <class Contact>
 void run(const gimlet::scene::scene<S, hmx>& sc, const gimlet::solver_options<S>& opt) {
     gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact> sol(sc, opt);
     for (int k = 0; k < max_steps; ++k) {
         sol.step();
-        if (!finite_state(sol)) fuzz::finding("step " + std::to_string(k) + " left a non-finite value without an error");
+        if (!fuzz::finite_state(sol)) fuzz::finding("step " + std::to_string(k) + " left a non-finite value without an error");
     }
 }
 
