@@ -417,7 +417,8 @@ TEST_CASE("a user's contact law cannot create energy", "[contact][verification]"
 // A law with its own friction in impulse(): frictionless (or mu = 0.05) whatever friction() says,
 // here no slip (infinity). The framework holds a pair the law engaged through the step's later
 // passes with the law's own tangential impulse, not with Coulomb at friction(): held stuck in
-// MUSL's re-mapping while the particles slid, two blocks meeting obliquely gained 15.9 % energy.
+// MUSL's re-mapping while the particles slid, two blocks meeting obliquely gained 15.2 % energy
+// (15.9 % at 2.5 cm cells).
 struct own_friction {
     static constexpr bool multi_field = true;
     using required_fields = gimlet::field_list<>;
@@ -439,13 +440,13 @@ struct own_friction {
 static_assert(contact::Law<own_friction>);
 
 // The largest (KE + IE) / KE0 over 0.1 s of two elastic blocks (0.25 x 0.2 m, 1000 kg/m^3,
-// E = 1 MPa) meeting at (+-1, +-0.5) m/s, offset so that they slide, 2.5 cm cells, in a
+// E = 1 MPa) meeting at (+-1, +-0.5) m/s, offset so that they slide, 5 cm cells, in a
 // 1 x 0.5 m box of slip walls.
 template <class Law>
 double oblique_energy_peak(const Law& law, gimlet::update_scheme scheme) {
     gimlet::grid_spec<S> gs;
     gs.upper = vec(1.0, 0.5);
-    gs.cell = 0.025;
+    gs.cell = 0.05;
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
     gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
     const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
