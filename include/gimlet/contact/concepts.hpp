@@ -26,9 +26,9 @@ namespace gimlet::contact {
 /// friction, `friction()`) through the step's later passes, where the law is not asked again; a
 /// pair left free stays free for the rest of the step. Under USF the
 /// law decides on the velocities the forces of the current stress would give, and the pairs it
-/// engages are held. So `impulse` sets the first correction of a pair; what holds it afterwards
-/// is the framework's normal constraint, with the tangential part of `impulse` asked again on
-/// each later pass's velocities (Coulomb with `friction()` without it). It projects whatever `impulse` returns onto
+/// engages are held. So `impulse` decides the correction of a pair once per step: the step's
+/// later passes remove the same fractions of the approach and of the slip as it did, and do not
+/// ask again (without `impulse`: the whole approach, Coulomb with `friction()`). It projects whatever `impulse` returns onto
 /// the dissipative set before applying it: a normal part that only removes approach (from none
 /// of it to all of it) and a tangential part that opposes the slip, stops at most all of it, and
 /// stays within mu times the normal part. So a law cannot create momentum or energy, whatever it

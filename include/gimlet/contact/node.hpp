@@ -48,6 +48,12 @@ struct node_view {
     real dt = 0;                      ///< time step
     std::size_t node = 0;             ///< the node's index in the grid
     vector position = vector::Zero(); ///< the node's position (m)
+    /// count x count, in/out, for a contact law with its own impulse (multi_field::correct):
+    /// where the step's deciding pass engaged pair (a, b), a < b, the fractions of its normal
+    /// approach and of its slip that the law's impulse removed, [a * count + b]. The step's later
+    /// passes remove the same fractions of theirs: the law is not asked again. Null: not kept.
+    real* normal_fraction = nullptr;
+    real* slip_fraction = nullptr;
 
     /// Most fields at one node: their pairs must fit the 64-bit masks below. The solver stops a
     /// run with a numerical_error naming the node if more meet there.

@@ -122,12 +122,13 @@ struct no_tally {};
 /// more than 1e-12 of the largest velocity there (at most 64 sweeps). Every correction removes
 /// kinetic energy, so the repetition converges and creates none.
 /// With a `tally` (contact::Counting), law.count(tally, pair, outcome) is called for every open
-/// pair the law engaged, with the momentum this correction gave body a. What the law's impulse
-/// sets is that first correction; a pair engaged is then held wherever a later sweep or pass of
-/// the step sees it again: its normal relative velocity removed, and its slip resisted by the
-/// tangential part of law.impulse(pair) on those velocities (held_impulse), or without
-/// impulse() by Coulomb friction with law.friction(). The framework keeps the law's decision
-/// and its friction, not the size of its normal impulse.
+/// pair the law engaged, with the momentum this correction gave body a. Where a law with
+/// impulse() engages a pair, the fractions of the approach and of the slip its projected impulse
+/// removed are recorded (node_view::normal_fraction, slip_fraction); wherever a later sweep or
+/// pass of the step sees the pair again, the same fractions of its normal relative velocity
+/// (approaching or not) and slip are removed, and the law is not asked again. A law without
+/// impulse() is held with the whole normal relative velocity removed and Coulomb friction with
+/// law.friction(). (A node view without the fractions, a user's own: held_impulse.)
 template <Space S, contact::Law L, class Tally = detail::no_tally>
 void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) {
     using real = typename S::real;
@@ -169,11 +170,28 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                 if (!kept && (!(relative.dot(n) > real(0)) || !law.in_contact(pair))) continue;
                 vector dp = vector::Zero();  // to a
                 if constexpr (detail::has_impulse<L, S>) {
+                    const std::size_t slot = a * node.count + b;
+                    const real stop = pair.reduced_mass() * pair.approach();
+                    const vector slip = pair.slip();
                     if (!kept) {
                         dp = dissipative_impulse(pair, vector(law.impulse(pair)), mu);
-                        if (!(-dp.dot(n) > real(0))) continue;  // stops no approach: not engaged
+                        const real normal = -dp.dot(n);
+                        if (!(normal > real(0))) continue;  // stops no approach: not engaged
+                        // What the law chose, for the step's later passes to repeat.
+                        if (node.normal_fraction) {
+                            const real slipping = pair.reduced_mass() * slip.norm();
+                            node.normal_fraction[slot] = std::min(real(1), normal / stop);
+                            node.slip_fraction[slot] =
+                                slipping > real(0) ? std::min(real(1), vector(dp + normal * n).norm() / slipping) : real(0);
+                        }
+                    } else if (node.normal_fraction) {
+                        // The same fractions of this pass's normal relative velocity (approaching
+                        // or not) and slip: asking the law again on other velocities let it stick
+                        // where it had let slide, or hold where it had stopped part of the approach.
+                        dp = -node.normal_fraction[slot] * stop * n - node.slip_fraction[slot] * pair.reduced_mass() * slip;
                     } else {
-                        // The law's own friction on these velocities (asked only while they approach).
+                        // A node view without the fractions (a user's own): the law's tangential
+                        // part on these velocities, against the held normal.
                         const bool approaching = pair.approach() > real(0);
                         dp = held_impulse(pair, approaching ? vector(law.impulse(pair)) : vector(vector::Zero()), mu);
                     }

@@ -103,6 +103,8 @@ public:
                                : vector::Zero());
         }
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
+        normal_fraction_.assign(shared_pair_normal_.size(), real(1));
+        slip_fraction_.assign(shared_pair_normal_.size(), real(0));
         engaged_.assign(shared_.size(), 0);
         if (shared_.empty()) return;
         // Particles of one node are visited by one thread at a time (slab colouring), and a
@@ -168,6 +170,8 @@ public:
                                        dt};
             view.node = sn.node;
             view.position = grid.node_position(sn.node);
+            view.normal_fraction = normal_fraction_.data() + sn.first_pair;
+            view.slip_fraction = slip_fraction_.data() + sn.first_pair;
             if (!deciding) {
                 view.kept_pairs = engaged_[s];
                 view.open_pairs = 0;
@@ -261,6 +265,9 @@ private:
     std::vector<std::uint32_t> shared_field_, shared_owner_;
     std::vector<vector> shared_normal_, shared_pair_normal_;
     std::vector<real> shared_reach_;
+    // Per shared node and pair: what a law's impulse removed where the deciding pass engaged it
+    // (contact::node_view::normal_fraction, slip_fraction).
+    std::vector<real> normal_fraction_, slip_fraction_;
     std::vector<std::uint64_t> engaged_;
     std::vector<real> m_;
     std::vector<vector> p_, p_before_, trial_velocity_;
