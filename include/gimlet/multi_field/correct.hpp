@@ -9,6 +9,7 @@
 #include "gimlet/contact/node.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
@@ -73,23 +74,6 @@ template <Space S>
     return vector(-normal * pair.normal + detail::tangential_part(pair, wanted, mu, normal));
 }
 
-/// What holds a pair the step's deciding pass engaged, in a later pass (node_view::kept_pairs),
-/// for a law with its own impulse: the whole normal relative velocity removed (the constraint
-/// the stress or the forces were computed with, approaching or not), and while the pair
-/// approaches, the tangential part of what the law asks on these velocities (wanted), projected
-/// as in dissipative_impulse against that normal impulse. So the law's friction holds in every
-/// pass, not the framework's Coulomb rule: a frictionless impulse under a large friction()
-/// stuck the bodies in MUSL's re-mapping while their particles slid, and created 16 % energy.
-template <Space S>
-[[nodiscard]] typename S::vector held_impulse(const contact::pair_view<S>& pair, const typename S::vector& wanted,
-                                              typename S::real mu) {
-    using real = typename S::real;
-    using vector = typename S::vector;
-    const real stop = pair.reduced_mass() * pair.approach();  // < 0: a pull that holds a separating pair
-    return vector(-stop * pair.normal + (stop > real(0) ? detail::tangential_part(pair, wanted, mu, stop)
-                                                         : vector(vector::Zero())));
-}
-
 namespace detail {
 
 /// Whether law L asks for its own impulse.
@@ -128,7 +112,8 @@ struct no_tally {};
 /// pass of the step sees the pair again, the same fractions of its normal relative velocity
 /// (approaching or not) and slip are removed, and the law is not asked again. A law without
 /// impulse() is held with the whole normal relative velocity removed and Coulomb friction with
-/// law.friction(). (A node view without the fractions, a user's own: held_impulse.)
+/// law.friction(). (A node view without room for the fractions, a user's own, keeps them for
+/// its sweeps; kept pairs it brings are held whole, without friction.)
 template <Space S, contact::Law L, class Tally = detail::no_tally>
 void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) {
     using real = typename S::real;
@@ -138,6 +123,21 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
     for (std::size_t b = 0; b < node.count; ++b) speed = std::max(speed, real(node.momentum[b].norm() / node.mass[b]));
     const real tolerance = real(1e-12) * speed;
     const int sweeps = node.count > 2 ? 64 : 1;
+    // What a law's impulse removed where it engaged a pair (node_view::normal_fraction), kept
+    // here for the node's later sweeps where the view brings no room for it (a user's own view;
+    // its kept pairs are then held whole and without friction).
+    [[maybe_unused]] std::array<real, contact::node_view<S>::max_fields * contact::node_view<S>::max_fields> own_normal,
+        own_slip;
+    real* normal_fraction = node.normal_fraction;
+    real* slip_fraction = node.slip_fraction;
+    if constexpr (detail::has_impulse<L, S>) {
+        if (!normal_fraction || !slip_fraction) {
+            own_normal.fill(real(1));
+            own_slip.fill(real(0));
+            normal_fraction = own_normal.data();
+            slip_fraction = own_slip.data();
+        }
+    }
     for (int sweep = 0; sweep < sweeps; ++sweep) {
         real largest = 0;  // the largest normal relative speed corrected in this sweep
         for (std::size_t a = 0; a + 1 < node.count; ++a) {
@@ -178,22 +178,15 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                         const real normal = -dp.dot(n);
                         if (!(normal > real(0))) continue;  // stops no approach: not engaged
                         // What the law chose, for the step's later passes to repeat.
-                        if (node.normal_fraction) {
-                            const real slipping = pair.reduced_mass() * slip.norm();
-                            node.normal_fraction[slot] = std::min(real(1), normal / stop);
-                            node.slip_fraction[slot] =
-                                slipping > real(0) ? std::min(real(1), vector(dp + normal * n).norm() / slipping) : real(0);
-                        }
-                    } else if (node.normal_fraction) {
+                        const real slipping = pair.reduced_mass() * slip.norm();
+                        normal_fraction[slot] = std::min(real(1), normal / stop);
+                        slip_fraction[slot] =
+                            slipping > real(0) ? std::min(real(1), vector(dp + normal * n).norm() / slipping) : real(0);
+                    } else {
                         // The same fractions of this pass's normal relative velocity (approaching
                         // or not) and slip: asking the law again on other velocities let it stick
                         // where it had let slide, or hold where it had stopped part of the approach.
-                        dp = -node.normal_fraction[slot] * stop * n - node.slip_fraction[slot] * pair.reduced_mass() * slip;
-                    } else {
-                        // A node view without the fractions (a user's own): the law's tangential
-                        // part on these velocities, against the held normal.
-                        const bool approaching = pair.approach() > real(0);
-                        dp = held_impulse(pair, approaching ? vector(law.impulse(pair)) : vector(vector::Zero()), mu);
+                        dp = -normal_fraction[slot] * stop * n - slip_fraction[slot] * pair.reduced_mass() * slip;
                     }
                 }
                 if (!detail::has_impulse<L, S>) {
