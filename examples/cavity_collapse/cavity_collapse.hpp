@@ -50,6 +50,9 @@ struct settings {
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
     bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
+    // Self-contact (multi_field::self_contact): each block's two sides of its closing cavity in
+    // separate velocity fields where they meet. Needs a multi-field contact (not single).
+    bool self_contact = true;
     int threads = 0;
 };
 
@@ -68,6 +71,9 @@ inline void validate(const settings& s) {
     gimlet::require(std::isfinite(s.radius) && s.radius >= 0 && s.radius <= max_radius, "cavity radius (m)", s.radius,
                     "[0, 0.018] (0 = no cavity; the block is 0.04 m wide)");
     gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 4e-3, "cell size (m)", s.cell, "(0, 4e-3]");
+    if (s.self_contact && s.contact == contact_kind::single)
+        throw gimlet::invalid_parameter("self-contact with single-field contact", "on",
+                                        "off (self-contact needs a multi-field contact: distance or bardenhagen)");
     const double cells_x = width / s.cell, cells_gap = gap / s.cell;
     gimlet::require(std::abs(cells_x - std::round(cells_x)) < 1e-9 * cells_x &&
                         std::abs(cells_gap - std::round(cells_gap)) < 1e-9 * cells_gap,

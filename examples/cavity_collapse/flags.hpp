@@ -17,7 +17,7 @@ namespace cavity_collapse {
 
 inline constexpr const char* usage =
     "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
-    "[--contact single|bardenhagen|distance] [--end-us T] [--sample-every-us T] "
+    "[--contact single|bardenhagen|distance] [--self-contact on|off] [--end-us T] [--sample-every-us T] "
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
     "[--volumetric-average off|on] [--pic-fraction A] [--temperature isentrope|paper] [--threads N] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
@@ -32,6 +32,9 @@ inline settings read_settings(example::cli& args) {
     const std::string contact = args.choice("contact", "distance", {"single", "bardenhagen", "distance"});
     s.contact = contact == "single" ? contact_kind::single
                                     : (contact == "bardenhagen" ? contact_kind::bardenhagen : contact_kind::distance);
+    // On by default with a multi-field contact; single-field contact has one field per grid.
+    const std::string self = args.choice("self-contact", "", {"on", "off"});
+    s.self_contact = self.empty() ? s.contact != contact_kind::single : self == "on";
     s.end = 1e-6 * args.real("end-us", 40.0, 0.0, 1000.0);
     s.sample_every = 1e-6 * args.real("sample-every-us", 0.1, 0.0, 100.0);
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);

@@ -151,7 +151,7 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
             {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
             {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction},
-            {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}};
+            {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0}};
 }
 
 template <class Contact, class Material>
@@ -160,7 +160,14 @@ int run(const settings& s, const run_files& io) {
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
-    gimlet::solver<S, gimlet::shape::ugimp, Material, Contact> sol(make_scene<Material>(s), opt, Contact{});
+    // Self-contact needs several fields per body, so a multi-field contact; off, its partition
+    // keeps one field per body and the results are those of multi_field::by_body.
+    using partition = std::conditional_t<std::is_same_v<Contact, gimlet::contact::single_field>,
+                                         gimlet::multi_field::by_body, gimlet::multi_field::self_contact>;
+    partition part;
+    if constexpr (std::is_same_v<partition, gimlet::multi_field::self_contact>) part.enabled = s.self_contact;
+    gimlet::solver<S, gimlet::shape::ugimp, Material, Contact, gimlet::field_list<>, partition> sol(
+        make_scene<Material>(s), opt, Contact{}, part);
     const auto& out = io.out;
     monitor mon(s);
     summary sum;
@@ -225,8 +232,9 @@ int run(const settings& s, const run_files& io) {
     gimlet::io::exact_numbers(times);
     if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
     std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, cavity radius %.2f mm, cell %.3f mm, %s contact, "
-                "%zu particles, %s %.2f us to %.2f us\n",
-                s.velocity, s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), sol.particles().size(),
+                "self-contact %s, %zu particles, %s %.2f us to %.2f us\n",
+                s.velocity, s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
+                sol.particles().size(),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
     std::fflush(stdout);
 
@@ -292,7 +300,7 @@ int run(const settings& s, const run_files& io) {
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature";
+          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
@@ -304,7 +312,7 @@ int run(const settings& s, const run_files& io) {
        << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
        << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
-       << (s.paper_temperature ? "paper" : "isentrope");
+       << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off");
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';
     su.close();

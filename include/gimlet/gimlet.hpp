@@ -38,6 +38,7 @@
 #include "gimlet/materials/hmx.hpp"
 #include "gimlet/multi_field/check.hpp"
 #include "gimlet/multi_field/partition.hpp"
+#include "gimlet/multi_field/self_contact.hpp"
 #include "gimlet/scene/check.hpp"
 #include "gimlet/scene/geometry.hpp"
 #include "gimlet/scene/scene.hpp"

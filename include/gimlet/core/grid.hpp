@@ -195,6 +195,17 @@ public:
         }
         return x;
     }
+    /// x minus the position of the node stored at `index`, the nearest image along periodic axes.
+    [[nodiscard]] vector offset_from_node(std::size_t index, const vector& x) const {
+        vector d = x - node_position(index);
+        for (int a = 0; a < dim; ++a) {
+            if (!periodic_[a]) continue;
+            const real len = spec_.upper[a] - spec_.lower[a];
+            if (d[a] > len / 2) d[a] -= len;
+            else if (d[a] < -len / 2) d[a] += len;
+        }
+        return d;
+    }
     /// True if node k along axis d is stored (always on a periodic axis).
     [[nodiscard]] bool stored(int d, int k) const noexcept {
         return periodic_[d] || (k + offset_[d] >= 0 && k + offset_[d] < nodes_[d]);

@@ -25,6 +25,13 @@ namespace gimlet::multi_field {
 ///   naming the particle.
 /// A node where one field has mass is what one velocity field would be, whatever its index:
 /// splitting changes nothing until two fields of a body meet at a node.
+///
+/// Two optional hooks let a partition look at the grid (multi_field::self_contact uses both):
+/// - `initialize(view)`: once, when the solver is built from a scene (not on a checkpoint
+///   restore, which brings the particles' fields back), with the particles writable;
+/// - `prepare(view)`: at the start of every step, before the solver asks `side`, with the
+///   particles read-only (a partition keeps what it learns in its own members).
+/// Both get a multi_field::partition_view. The solver calls a hook only if the partition has it.
 template <class P>
 concept Partition = requires {
     { P::fields_per_body } -> std::convertible_to<std::size_t>;
@@ -37,6 +44,22 @@ concept Partition = requires {
           { p.side(p2, node, x2) } -> std::convertible_to<std::size_t>;
           { p.side(p3, node, x3) } -> std::convertible_to<std::size_t>;
       });
+
+/// What a partition's optional hooks see: the particles (a particle_store, writable in
+/// `initialize`), each particle's stencil at the current positions (`stencils[i].for_each(
+/// f(node, S_ip, G_ip))`, nodes by storage index), the grid (node_position, offset_from_node,
+/// size) and the number of bodies. `for_each_particle_by_slab(f)` calls f(i) for every particle
+/// in an order that lets f add into per-node arrays without races: every node sums its
+/// particles' contributions in an order fixed by the grid and the particle order, whatever the
+/// thread count (so results stay thread-independent). f must not throw.
+template <class Store, class Stencils, class Grid, class BySlab>
+struct partition_view {
+    Store& particles;
+    const Stencils& stencils;
+    const Grid& grid;
+    std::size_t bodies;
+    BySlab for_each_particle_by_slab;
+};
 
 /// One velocity field per body (Bardenhagen et al. 2000): the default. A body never touches
 /// itself; its particles share one field wherever they meet.

@@ -125,6 +125,12 @@ public:
         wall_free_.assign(grid_.entries(), vector::Ones());
         grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
         slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
+        if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
+            compute_stencils();
+            slabs_.bucket();
+            auto view = partition_view<store_type>();
+            partition_.initialize(view);
+        }
     }
 
     /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
@@ -312,12 +318,14 @@ private:
         lap(timings_.particle_to_grid);
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
+        slabs_.bucket();
         if constexpr (fields_per_body > 1) {
+            if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); })
+                partition_.prepare(partition_view<const store_type>());
             choose_fields();
             lap(timings_.particle_to_grid);
         }
         dt_ = dt;
-        slabs_.bucket();
         if (options_.volumetric_average) average_mean_stress();
         grid_.clear();
     }
@@ -456,6 +464,19 @@ private:
         exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
                                     [&](std::size_t i) { return entries(i); },
                                     [&](auto&& f) { for_each_particle_by_slab(f); });
+    }
+
+    // What a partition's hooks see (multi_field::partition_view).
+    struct slab_caller {
+        solver* self;
+        template <class F>
+        void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
+    };
+    template <class Store>
+    using partition_view_type = multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller>;
+    template <class Store>
+    [[nodiscard]] partition_view_type<Store> partition_view() {
+        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}};
     }
 
     // The partition's side of every particle at every node of its stencil, from the

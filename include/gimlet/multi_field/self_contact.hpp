@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Self-contact: a body's two sides of a closing void or crack in separate velocity fields where
+/// they meet, so the multi-field contact laws act on them as between bodies (docs/equations.md,
+/// "Self-contact"; after the field-gradient partitioning of Homel & Herbold 2017, IJNME 109).
+
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/space.hpp"
+#include "gimlet/multi_field/partition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+namespace gimlet {
+
+namespace fields {
+/// The outward normal of the body's surface near the particle in the reference configuration,
+/// scaled by the body's surface field there: about 1 at a free surface, falling to 0 two cells
+/// into the body, exactly 0 in the bulk. Set once by multi_field::self_contact when the solver
+/// is built; carried by the material (the current normal is cof(F) times it).
+struct surface_normal {
+    template <class S> using type = typename S::vector;
+    static constexpr const char* name = "surface_normal";
+};
+}  // namespace fields
+
+namespace multi_field {
+
+/// Splits each body into two velocity fields at the nodes where two of its own surfaces face
+/// each other across a gap, and keeps one field everywhere else (docs/equations.md,
+/// "Self-contact").
+///
+/// - At construction (`initialize`), each particle's surface normal is the body's mass gradient
+///   sum_q m_q G_iq interpolated to it, scaled by the body's largest; below `surface_cutoff`
+///   of that it is zero (the bulk). No neighbour search: two scatters over the grid.
+/// - Each step (`prepare`), at each node and body: the reference direction e is the current
+///   normal of the particle with the largest S_ip m_p |n_p| there. The particles whose normal
+///   points along e (n . e > 1/2) have their front at the largest (x_p - x_i) . e, those
+///   pointing against it (n . e < -1/2) at the smallest. The node is split only if both groups
+///   are present and face each other across a gap: the second front lies beyond the first. Two
+///   faces of one ligament point away from each other, so a jet or a thin strip stays one field.
+/// - At a split node every particle of the body goes by its side of the plane midway between
+///   the fronts (field 0 behind the surface whose normal is e, field 1 beyond), so a particle
+///   without a normal still has a side. A third surface at the node takes the side of the plane
+///   it lies on: two fields at most per body and node, never a failure.
+/// - `enabled = false` keeps one field per body everywhere (results as multi_field::by_body);
+///   a scene without voids pays for `prepare` only.
+struct self_contact {
+    using required_fields = field_list<fields::surface_normal>;
+    static constexpr std::size_t fields_per_body = 2;
+
+    bool enabled = true;
+    /// Particles whose surface field is below this fraction of the body's largest are bulk.
+    double surface_cutoff = 0.05;
+
+    /// The surface normals at t = 0 (multi_field::Partition's initialize hook).
+    template <class View>
+    void initialize(View& view) {
+        using store_t = std::remove_cvref_t<decltype(view.particles)>;
+        using S = typename store_t::space_type;
+        using vector = typename S::vector;
+        using real = typename S::real;
+        auto& ps = view.particles;
+        const std::size_t nodes = view.grid.size(), n = ps.size();
+        const auto& mass = ps.template column<fields::mass>();
+        const auto& body = ps.template column<fields::body>();
+        auto& normal = ps.template column<fields::surface_normal>();
+        // Each body's mass gradient at the nodes: sum_q m_q G_iq points out of the body
+        // (Bardenhagen et al. 2000, eq. 16).
+        std::vector<vector> gradient(view.bodies * nodes, vector::Zero());
+        view.for_each_particle_by_slab([&](std::size_t i) {
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            view.stencils[i].for_each(
+                [&](std::size_t node, real, const vector& g) { gradient[base + node] += mass[i] * g; });
+        });
+        std::vector<real> largest(view.bodies, real(0));
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            vector at = vector::Zero();
+            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) { at += w * gradient[base + node]; });
+            normal[i] = at;
+            largest[body[i]] = std::max(largest[body[i]], real(at.norm()));
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            const real top = largest[body[i]];
+            const real size = top > 0 ? real(normal[i].norm()) / top : real(0);
+            normal[i] = size >= real(surface_cutoff) ? vector(normal[i] / top) : vector::Zero();
+        }
+    }
+
+    /// The split nodes of this step (multi_field::Partition's prepare hook).
+    template <class View>
+    void prepare(const View& view) {
+        using store_t = std::remove_cvref_t<decltype(view.particles)>;
+        using S = typename store_t::space_type;
+        using vector = typename S::vector;
+        using matrix = typename S::matrix;
+        using real = typename S::real;
+        constexpr int dim = S::dim;
+        const auto& ps = view.particles;
+        const std::size_t nodes = view.grid.size(), n = ps.size(), entries = view.bodies * nodes;
+        split_nodes_ = 0;
+        dim_ = dim;
+        if (!enabled) {
+            split_.assign(entries, 0);
+            return;
+        }
+        const auto& mass = ps.template column<fields::mass>();
+        const auto& body = ps.template column<fields::body>();
+        const auto& normal0 = ps.template column<fields::surface_normal>();
+        const auto& F = ps.template column<fields::deformation_gradient>();
+        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|.
+        current_.resize(n * std::size_t(dim));
+        for (std::size_t i = 0; i < n; ++i) {
+            vector c = vector::Zero();
+            const real a = normal0[i].norm();
+            if (a > 0) {
+                const matrix inv_t = F[i].inverse().transpose();
+                c = inv_t * normal0[i];
+                const real len = c.norm();
+                c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
+            }
+            for (int d = 0; d < dim; ++d) current_[i * std::size_t(dim) + std::size_t(d)] = double(c[d]);
+        }
+        auto current = [&](std::size_t i) {
+            vector c;
+            for (int d = 0; d < dim; ++d) c[d] = real(current_[i * std::size_t(dim) + std::size_t(d)]);
+            return c;
+        };
+        constexpr double none = -1;
+        best_.assign(entries, none);
+        best_particle_.assign(entries, std::numeric_limits<std::size_t>::max());
+        // Pass 1: the reference direction of each node and body (largest S m |n|, ties to the
+        // lower particle index, so the choice does not depend on the order of the sum).
+        view.for_each_particle_by_slab([&](std::size_t i) {
+            const real a = normal0[i].norm();
+            if (!(a > 0)) return;
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
+                if (!(w > 0)) return;
+                const std::size_t e = base + node;
+                const double key = double(w * mass[i] * a);
+                if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
+            });
+        });
+        const double inf = std::numeric_limits<double>::infinity();
+        front_along_.assign(entries, -inf);
+        front_against_.assign(entries, inf);
+        // Pass 2: the fronts of the particles facing along e and against it.
+        view.for_each_particle_by_slab([&](std::size_t i) {
+            const real a = normal0[i].norm();
+            if (!(a > 0)) return;
+            const vector c = current(i) / a;
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            const vector x = ps.template column<fields::position>()[i];
+            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
+                if (!(w > 0)) return;
+                const std::size_t e = base + node;
+                const vector ref = current(best_particle_[e]).normalized();
+                const double facing = double(c.dot(ref));
+                const double along = double(view.grid.offset_from_node(node, x).dot(ref));
+                if (facing > 0.5) front_along_[e] = std::max(front_along_[e], along);
+                if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
+            });
+        });
+        // A node is split where both fronts exist and the surface facing against e lies beyond
+        // the one facing along it: a gap between two faces, not the two faces of a ligament.
+        split_.assign(entries, 0);
+        mid_.assign(entries, 0.0);
+        reference_.assign(entries * std::size_t(dim), 0.0);
+        for (std::size_t e = 0; e < entries; ++e) {
+            if (!(front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e])) continue;
+            split_[e] = 1;
+            ++split_nodes_;
+            mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
+            const vector ref = current(best_particle_[e]).normalized();
+            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+        }
+        nodes_ = nodes;
+        grid_length_.assign(std::size_t(dim), 0.0);
+        for (int d = 0; d < dim; ++d) {
+            grid_length_[std::size_t(d)] = view.grid.periodic(d) ? double(view.grid.spec().upper[d] - view.grid.spec().lower[d]) : 0.0;
+        }
+    }
+
+    /// Field 0 or 1 of the particle's body at `node` (multi_field::Partition).
+    template <class P, class V>
+    [[nodiscard]] std::size_t side(const P& p, std::size_t node, const V& node_position) const {
+        const std::size_t e = std::size_t(p.template get<fields::body>()) * nodes_ + node;
+        if (e >= split_.size() || !split_[e]) return 0;
+        const auto& x = p.template get<fields::position>();
+        double along = 0;
+        for (int d = 0; d < dim_; ++d) {
+            double off = double(x[d] - node_position[d]);
+            const double len = grid_length_[std::size_t(d)];
+            if (len > 0) {
+                if (off > len / 2) off -= len;
+                else if (off < -len / 2) off += len;
+            }
+            along += off * reference_[e * std::size_t(dim_) + std::size_t(d)];
+        }
+        return along < mid_[e] ? 0 : 1;
+    }
+
+    /// Nodes (times bodies) split in the last step: zero where no two surfaces of a body face
+    /// each other.
+    [[nodiscard]] std::size_t split_nodes() const noexcept { return split_nodes_; }
+
+private:
+    std::size_t nodes_ = 0, split_nodes_ = 0;
+    int dim_ = 0;
+    std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, grid_length_;
+    std::vector<std::size_t> best_particle_;
+    std::vector<std::uint8_t> split_;
+};
+
+}  // namespace multi_field
+}  // namespace gimlet
