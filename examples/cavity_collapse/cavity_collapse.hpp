@@ -72,7 +72,7 @@ inline void validate(const settings& s) {
                     "[0, 0.018] (0 = no cavity; the block is 0.04 m wide)");
     gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 4e-3, "cell size (m)", s.cell, "(0, 4e-3]");
     if (s.self_contact && s.contact == contact_kind::single)
-        throw gimlet::invalid_parameter("self-contact with single-field contact", "on",
+        throw gimlet::invalid_parameter("--self-contact with --contact single", "on",
                                         "off (self-contact needs a multi-field contact: distance or bardenhagen)");
     const double cells_x = width / s.cell, cells_gap = gap / s.cell;
     gimlet::require(std::abs(cells_x - std::round(cells_x)) < 1e-9 * cells_x &&

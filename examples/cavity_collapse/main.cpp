@@ -3,6 +3,7 @@
 // Secondary impact under weak shocks, jetting and hot spots under strong ones.
 //
 //   cavity_collapse [--velocity 300] [--radius 10] [--cell 0.5] [--contact distance]
+//                   [--self-contact on|off (on with distance or bardenhagen contact)]
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.5] [--volumetric-average off] [--pic-fraction 0]

@@ -85,6 +85,8 @@ gimlet_cli_case(cavity_collapse end_negative   "--end-us -5"       "--end-us = -
 gimlet_cli_case(cavity_collapse contact_unknown "--contact none"   "--contact = none is invalid; valid: single|bardenhagen|distance")
 gimlet_cli_case(cavity_collapse average_unknown "--volumetric-average 1" "--volumetric-average = 1 is invalid; valid: off|on")
 gimlet_cli_case(cavity_collapse temperature_unknown "--temperature hot" "--temperature = hot is invalid; valid: isentrope|paper")
+gimlet_cli_case(cavity_collapse self_contact_unknown "--self-contact maybe" "--self-contact = maybe is invalid; valid: on|off")
+gimlet_cli_case(cavity_collapse self_contact_single "--contact single --self-contact on" "--self-contact with --contact single = on is invalid")
 gimlet_cli_case(cavity_collapse pic_negative "--pic-fraction -0.5" "--pic-fraction = -0.5 is invalid; valid range: [0, 1]")
 gimlet_cli_case(cavity_collapse unknown_flag   "--time-us 5"       "unknown flag --time-us")
 gimlet_cli_case(cavity_collapse output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
