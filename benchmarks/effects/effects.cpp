@@ -28,17 +28,19 @@ struct hmx_parts {
     }
 };
 
-template <class Contact, class M>
+template <class Contact, class M, class Part = gimlet::multi_field::by_body>
 void run(const char* name, const M& mat, double cell, int steps, int repeats, int threads,
-         bool volumetric_average = false) {
-    using solver = gimlet::solver<S, gimlet::shape::ugimp, M, Contact>;
+         bool volumetric_average = false, bool self_contact = true) {
+    using solver = gimlet::solver<S, gimlet::shape::ugimp, M, Contact, gimlet::field_list<>, Part>;
     gimlet::solver_options<S> opt;
     opt.threads = threads;
     opt.volumetric_average = volumetric_average;
     std::vector<double> seconds;
     std::size_t particles = 0, bytes = 0;
     for (int k = 0; k < repeats; ++k) {
-        solver sol(bench::two_blocks(mat, cell, 0.0), opt);
+        Part part;
+        if constexpr (requires { part.enabled; }) part.enabled = self_contact;
+        solver sol(bench::two_blocks(mat, cell, 0.0), opt, Contact{}, part);
         particles = sol.particles().size();
         bytes = 0;
         sol.particles().for_each_column([&](auto, const auto& column) { bytes += sizeof(column[0]); });
@@ -79,6 +81,13 @@ int main(int argc, char** argv) try {
                            materials::make_hmx<eos::energy_reference::internal_energy, materials::paper_temperature>(),
                            cell, steps, repeats, threads);
     run<contact::distance>("volumetric average on (solver_options)", materials::make_hmx(), cell, steps, repeats, threads, true);
+    // Self-contact costs what its per-step passes cost even where no void closes (here none).
+    run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
+        "self-contact on (multi_field::self_contact; no void in this scene)", materials::make_hmx(), cell, steps,
+        repeats, threads);
+    run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
+        "self-contact compiled in but enabled = false", materials::make_hmx(), cell, steps, repeats, threads, false,
+        false);
     run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::single_field>("all off: elastic + Mie-Grueneisen + single field",

@@ -5,9 +5,12 @@
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
+#include "common/hugoniot.hpp"
+
 #include <gimlet/gimlet.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -46,7 +49,9 @@ struct settings {
     double snapshot_every = 4e-6;    // s, particle snapshots (0: none)
     // s after the nominal contact: more snapshots at these times (the paper's figure times)
     std::vector<double> snapshots_after_contact;
-    double hot_spot_radius = 0.5e-3; // m, the disc the hot-spot temperature is averaged over
+    // m, the disc the hot-spot temperature is averaged over: the same physical disc at every
+    // resolution, three particle spacings at 0.5 mm cells.
+    double hot_spot_radius = 0.75e-3;
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
     bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
@@ -132,6 +137,17 @@ struct cavity_state {
     double centre_y = 0;          // m: middle of the axial chord (last seen while open)
 };
 
+// The hot-spot distribution (docs/reproduction.md): the material hotter than the bulk shock
+// temperature T_EP(v) by 50, 100, 200, 400 and 800 K. T_EP(v) is the temperature of the
+// elastic-plastic Rankine-Hugoniot state of the incident shock, a symmetric impact at +-v, on
+// the EOS's own thermodynamics (examples/common/hugoniot.hpp): 311.45, 317.46, 323.54, 337.02,
+// 352.88, 371.90, 394.77 and 422.05 K at 100, 150, 200, 300, 400, 500, 600 and 700 m/s.
+inline constexpr std::size_t hot_levels = 5;
+inline constexpr std::array<double, hot_levels> hot_excess = {50, 100, 200, 400, 800};
+inline double bulk_shock_temperature(double velocity) {
+    return example::hugoniot_temperature(example::rankine_hugoniot(gimlet::materials::make_hmx(), velocity));
+}
+
 // One row of series.csv.
 struct sample {
     double time = 0;
@@ -140,6 +156,9 @@ struct sample {
     double max_temperature = 0, hot_spot = 0;  // K
     double max_eta = 0;  // the largest particle compression 1 - det F
     S::vector hot_spot_centre = S::vector::Zero();
+    // The material hotter than the bulk shock temperature T_EP(v) by each of hot_excess (K):
+    // mass (kg per metre of depth) and area (m^2).
+    std::array<double, hot_levels> hot_mass{}, hot_area{};
     cavity_state cavity[2];
     [[nodiscard]] double wall_relative_velocity() const {
         return std::max(cavity[0].closing_speed, cavity[1].closing_speed);
@@ -149,8 +168,29 @@ struct sample {
 // Measures one sample; keeps the cavities' last centres so it can follow them.
 class monitor {
 public:
-    explicit monitor(const settings& s) : s_(s) {
+    explicit monitor(const settings& s) : s_(s), bulk_(cavity_collapse::bulk_shock_temperature(s.velocity)) {
         for (int b = 0; b < 2; ++b) centre_y_[b] = cavity_centre(b)[1];
+        for (std::size_t k = 0; k < hot_levels; ++k) levels_.push_back(bulk_ + hot_excess[k]);
+    }
+
+    /// T_EP(v) (K).
+    [[nodiscard]] double bulk_shock_temperature() const { return bulk_; }
+
+    /// What is tracked every step (the jet's landing can be shorter than a sample interval):
+    /// the hot spot, the hottest particle, the largest compression and the hot material.
+    template <class Solver>
+    sample peaks(const Solver& sol) const {
+        sample r;
+        r.time = double(sol.time());
+        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius);
+        r.hot_spot = hs.temperature;
+        r.hot_spot_centre = hs.centre;
+        r.max_temperature = hs.max_temperature;
+        for (const auto& f : sol.particles().template column<gimlet::fields::deformation_gradient>())
+            r.max_eta = std::max(r.max_eta, 1.0 - double(f.determinant()));
+        const auto hot = gimlet::diagnostics::hot_material(sol, levels_);
+        for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
+        return r;
     }
 
     template <class Solver>
@@ -163,14 +203,15 @@ public:
         const S::vector axis_point(0.5 * width, interface_y());
         const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, 1, axis_point, strip);
         r.D = g.found ? 0.5 * std::max(0.0, g.gap()) : 0.0;
+        const sample p = peaks(sol);
+        r.hot_spot = p.hot_spot;
+        r.hot_spot_centre = p.hot_spot_centre;
+        r.max_temperature = p.max_temperature;
+        r.max_eta = p.max_eta;
+        r.hot_mass = p.hot_mass;
+        r.hot_area = p.hot_area;
         r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
         r.internal = gimlet::diagnostics::internal_energy(sol);
-        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius);
-        r.max_temperature = hs.max_temperature;
-        for (const auto& f : sol.particles().template column<gimlet::fields::deformation_gradient>())
-            r.max_eta = std::max(r.max_eta, 1.0 - double(f.determinant()));
-        r.hot_spot = hs.temperature;
-        r.hot_spot_centre = hs.centre;
         if (s_.radius > 0) {
             for (std::uint32_t b = 0; b < 2; ++b) {
                 auto& c = r.cavity[b];
@@ -205,6 +246,8 @@ public:
 
 private:
     settings s_;
+    double bulk_;
+    std::vector<double> levels_;
     double centre_y_[2];
 };
 
@@ -231,6 +274,9 @@ struct summary {
     // ends first): a jet's landing has decompressed by then, so this is the hot spot that stays.
     static constexpr double settle_time = 5e-6;
     double settled_hot_spot = -1;
+    // The largest mass (kg per metre) hotter than T_EP(v) + hot_excess[k] at any step: the
+    // cumulative hot-spot curve.
+    std::array<double, hot_levels> max_hot_mass{};
     // Collapse and its mode (docs/reproduction.md): a cavity collapses when its axial chord
     // falls below half its initial diameter (below R); the collapse is asymmetric if the cavity
     // is then more than asymmetry_ratio times as wide across as along its axis. A cavity
@@ -258,6 +304,8 @@ struct summary {
         f("t_hot_spot", t_hot_spot);
         f("final_hot_spot", final_hot_spot);
         f("settled_hot_spot", settled_hot_spot);
+        for (std::size_t k = 0; k < hot_levels; ++k)
+            f(std::string("max_hot_mass_").append(std::to_string(int(hot_excess[k]))), max_hot_mass[k]);
         for (int b = 0; b < 2; ++b) {
             // (Appended, not "_" + to_string(b): g++ 12 at -O3 reports a false -Wrestrict on
             // operator+(const char*, string&&) once this is inlined; GCC bug 105329.)
@@ -267,6 +315,15 @@ struct summary {
             f("aspect" + k, aspect[b]);
             f("closure" + k, closure[b]);
         }
+    }
+
+    // Every step: the peaks of the hot spot, the hottest particle, the compression and the hot
+    // material (monitor::peaks).
+    void track(const sample& r) {
+        if (r.hot_spot > max_hot_spot) max_hot_spot = r.hot_spot, t_hot_spot = r.time, settled_hot_spot = -1;
+        max_temperature = std::max(max_temperature, r.max_temperature);
+        max_eta = std::max(max_eta, r.max_eta);
+        for (std::size_t k = 0; k < hot_levels; ++k) max_hot_mass[k] = std::max(max_hot_mass[k], r.hot_mass[k]);
     }
 
     void add(const sample& r, const settings& s) {

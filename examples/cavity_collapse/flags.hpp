@@ -38,7 +38,7 @@ inline settings read_settings(example::cli& args) {
     s.end = 1e-6 * args.real("end-us", 40.0, 0.0, 1000.0);
     s.sample_every = 1e-6 * args.real("sample-every-us", 0.1, 0.0, 100.0);
     s.snapshot_every = 1e-6 * args.real("snapshot-every-us", 4.0, 0.0, 1000.0, true);
-    s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.5, 0.0, 10.0);
+    s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.75, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";

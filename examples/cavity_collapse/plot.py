@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 """Figures of one cavity_collapse run: python3 plot.py OUTPUT_DIR.
 
-series.png: D, the relative wall velocity and the temperatures against the time after the
-nominal first contact. map_NNNN.png: pressure and temperature of the particles at each
+series.png: D, the relative wall velocity, the temperatures and the hot material against the
+time after the nominal first contact. hot_material.png: the largest mass over the run hotter
+than the bulk shock temperature T_EP(v) by each excess (the cumulative hot-spot curve). map_NNNN.png: pressure and temperature of the particles at each
 snapshot, like the paper's snapshot figures.
 """
 import csv
@@ -31,7 +32,7 @@ def read(path):
 out = Path(sys.argv[1])
 s = read(out / "series.csv")
 t = s["time_after_contact_us"]
-fig, ax = plt.subplots(3, 1, figsize=(6.4, 7.2), sharex=True)
+fig, ax = plt.subplots(4, 1, figsize=(6.4, 9.4), sharex=True)
 ax[0].plot(t, s["D_mm"], lw=1.2)
 ax[0].set_ylabel("D (mm)")
 ax[1].plot(t, s["wall_relative_velocity_m_s"], lw=1.0)
@@ -39,11 +40,36 @@ ax[1].set_ylabel("relative wall\nvelocity (m/s)")
 ax[2].plot(t, s["max_temperature_K"], lw=1.0, label="hottest particle")
 ax[2].plot(t, s["hotspot_temperature_K"], lw=1.2, label="hot spot (disc mean)")
 ax[2].set_ylabel("temperature (K)")
-ax[2].set_xlabel("time after contact (us)")
 ax[2].legend()
+# The hot-spot distribution: mass hotter than the bulk shock temperature T_EP(v) by each excess.
+hot = [k for k in s if k.startswith("hot_mass_above_TEP_plus_")]
+for k in hot:
+    excess = k[len("hot_mass_above_TEP_plus_"):].split("K")[0]
+    ax[3].plot(t, [1e3 * v for v in s[k]], lw=1.0, label=f"T - T_EP > {excess} K")
+ax[3].set_ylabel("hot mass (g/m)")
+ax[3].set_yscale("symlog", linthresh=1e-3)
+if hot:
+    ax[3].legend(fontsize=7)
+ax[3].set_xlabel("time after contact (us)")
 fig.tight_layout()
 fig.savefig(out / "series.png", dpi=110)
 plt.close(fig)
+
+# The cumulative hot-spot curve: the largest mass over the run above T_EP + excess.
+summary = read(out / "summary.csv") if (out / "summary.csv").exists() else {}
+levels = [k for k in summary if k.startswith("max_hot_mass_above_TEP_plus_")]
+if levels:
+    excess = [float(k[len("max_hot_mass_above_TEP_plus_"):].split("K")[0]) for k in levels]
+    fig, a = plt.subplots(figsize=(5.0, 3.6))
+    a.plot(excess, [1e3 * summary[k][0] for k in levels], "o-")
+    a.set_xscale("log")
+    a.set_yscale("symlog", linthresh=1e-3)
+    a.set_xlabel("T - T_EP (K)")
+    a.set_ylabel("largest mass above it (g/m)")
+    a.set_title(f"hot material, T_EP = {summary['bulk_shock_temperature_K'][0]:.1f} K", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out / "hot_material.png", dpi=110)
+    plt.close(fig)
 
 # 2 x 2 particles per cell
 spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
