@@ -75,13 +75,9 @@ template <class Solver>
         for (std::size_t i = 0; i < n; ++i) order[fill[bin[i]]++] = i;
     }
 
-    // The mean over the disc centred on particle i, summed in bin order (the same sums
-    // wherever it is asked for).
-    const double r2 = radius * radius;
-    auto disc = [&](std::size_t i, std::size_t& count) {
+    // f(k) for each of the 3^dim bins around particle i's, in a fixed order.
+    auto around = [&](std::size_t i, auto&& f) {
         const auto& b = cell[i];
-        double mass = 0, heat = 0;
-        count = 0;
         std::array<int, dim> off{};
         off.fill(-1);
         while (true) {
@@ -92,20 +88,27 @@ template <class Solver>
                 if (k < 0 || k >= long(bins[d])) valid = false;
                 else nb[d] = std::size_t(k);
             }
-            if (valid) {
-                const std::size_t k = flat(nb);
-                for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
-                    const std::size_t q = order[j];
-                    if (double((x[q] - x[i]).squaredNorm()) > r2) continue;
-                    mass += double(m[q]);
-                    heat += double(m[q]) * double(T[q]);
-                    ++count;
-                }
-            }
+            if (valid) f(flat(nb));
             int d = 0;
             while (d < dim && ++off[d] > 1) off[d] = -1, ++d;
             if (d == dim) break;
         }
+    };
+    // The mean over the disc centred on particle i, summed in bin order (the same sums
+    // wherever it is asked for).
+    const double r2 = radius * radius;
+    auto disc = [&](std::size_t i, std::size_t& count) {
+        double mass = 0, heat = 0;
+        count = 0;
+        around(i, [&](std::size_t k) {
+            for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
+                const std::size_t q = order[j];
+                if (double((x[q] - x[i]).squaredNorm()) > r2) continue;
+                mass += double(m[q]);
+                heat += double(m[q]) * double(T[q]);
+                ++count;
+            }
+        });
         return heat / mass;
     };
     // A disc's mean is at most the hottest particle of the 3^dim bins around its centre, so a
@@ -124,22 +127,7 @@ template <class Solver>
     r.temperature = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
         double bound = -std::numeric_limits<double>::infinity();
-        const auto& b = cell[i];
-        std::array<int, dim> off{};
-        off.fill(-1);
-        while (true) {
-            bool valid = true;
-            std::array<std::size_t, dim> nb{};
-            for (int d = 0; d < dim; ++d) {
-                const long k = long(b[d]) + off[d];
-                if (k < 0 || k >= long(bins[d])) valid = false;
-                else nb[d] = std::size_t(k);
-            }
-            if (valid) bound = std::max(bound, bin_max[flat(nb)]);
-            int d = 0;
-            while (d < dim && ++off[d] > 1) off[d] = -1, ++d;
-            if (d == dim) break;
-        }
+        around(i, [&](std::size_t k) { bound = std::max(bound, bin_max[k]); });
         if (bound < floor) continue;
         std::size_t count = 0;
         const double mean = disc(i, count);
