@@ -32,6 +32,8 @@ namespace gimlet::multi_field {
 /// - `prepare(view)`: at the start of every step, before the solver asks `side`, with the
 ///   particles read-only (a partition keeps what it learns in its own members).
 /// Both get a multi_field::partition_view. The solver calls a hook only if the partition has it.
+/// A third, `bool splits() const`, asked after `prepare`, may return false to say that every
+/// side is 0 this step, so the solver need not ask `side` particle by particle.
 template <class P>
 concept Partition = requires {
     { P::fields_per_body } -> std::convertible_to<std::size_t>;

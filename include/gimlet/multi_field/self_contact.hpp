@@ -211,6 +211,9 @@ struct self_contact {
     /// Nodes (times bodies) split in the last step: zero where no two surfaces of a body face
     /// each other.
     [[nodiscard]] std::size_t split_nodes() const noexcept { return split_nodes_; }
+    /// False when no node is split this step: every side is 0 (multi_field::Partition's
+    /// optional splits(), which spares the solver asking side() particle by particle).
+    [[nodiscard]] bool splits() const noexcept { return split_nodes_ > 0; }
 
 private:
     std::size_t nodes_ = 0, split_nodes_ = 0;

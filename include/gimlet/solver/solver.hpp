@@ -484,6 +484,14 @@ private:
     void choose_fields() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         sides_.resize(particles_.size());
+        // A partition that can say it splits nothing this step (multi_field::Partition's
+        // optional splits()) puts every particle in its body's first field at once.
+        if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) {
+            if (!partition_.splits()) {
+                std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
+                return;
+            }
+        }
         std::ptrdiff_t first_bad = n;
         GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
