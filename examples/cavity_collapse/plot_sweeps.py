@@ -10,6 +10,7 @@ writes to DIR (default SWEEPS_DIR/figures) whichever of these it has data for:
   wall_velocity.png    maximum relative wall velocity against v for each R
   hot_spot.png         hot-spot temperature (5 us after its peak) against v for each R
   hot_spot_peak.png    its peak, when the jet lands
+  hot_mass.png         the largest mass hotter than T_EP(v) + 100 K against v for each R
   collapse_mode.png    aspect at collapse and jet speed / v against v for each R
   threshold.png        the asymmetric-collapse threshold speed against R
   resolution.png       D_max and hot spot against the cell size
@@ -182,6 +183,12 @@ def main():
               "hot spot, 5 us after its peak")
     against_v(root, "max_hotspot_temperature_K", "hot-spot temperature (K)", fig_dir, "hot_spot_peak.png",
               "hot spot, peak (jet landing)", log=True)
+    # The hot material (summary.csv of runs that record it): the largest mass over the run
+    # hotter than the bulk shock temperature T_EP(v) by 100 K.
+    runs = rows(root / "velocity-radius" / "summary.csv")
+    if runs and "max_hot_mass_above_TEP_plus_100K_kg_m" in runs[0]:
+        against_v(root, "max_hot_mass_above_TEP_plus_100K_kg_m", "largest mass above T_EP + 100 K (kg/m)", fig_dir,
+                  "hot_mass.png", "hot material")
     collapse_mode(root, fig_dir)
     threshold(root, fig_dir)
     resolution(root, fig_dir)
