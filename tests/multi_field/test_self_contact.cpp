@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <utility>
 
@@ -28,6 +29,24 @@ using gimlet::multi_field::self_contact;
 using elastic = gimlet::elastic_material;
 using hmx = gimlet::materials::hmx_material<>;
 using box = gimlet::scene::box<S>;
+
+// The distance contact, counting the pairs it engages (to find the step contact begins).
+struct counted_distance : gimlet::contact::distance {
+    counted_distance() : gimlet::contact::distance(0.0) {}
+    struct tally {
+        std::uint64_t pairs = 0;
+        tally& operator+=(const tally& o) {
+            pairs += o.pairs;
+            return *this;
+        }
+    };
+    template <gimlet::Space Sp>
+    void count(tally& t, const gimlet::contact::pair_view<Sp>&, const gimlet::contact::pair_outcome<Sp>&) const {
+        ++t.pairs;
+    }
+    void record(const tally& t) { total += t; }
+    tally total;
+};
 
 template <class M, class Part = self_contact>
 using solver_t = gimlet::solver<S, gimlet::shape::ugimp, M, gimlet::contact::distance, gimlet::field_list<>, Part>;
@@ -164,8 +183,7 @@ auto slot(double dv, bool two_bodies, bool enabled, double cell) {
     opt.pic_fraction = 0.5;
     Part part;
     if constexpr (requires { part.enabled; }) part.enabled = enabled;
-    gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, Part> sol(
-        sc, opt, gimlet::contact::distance(), part);
+    gimlet::solver<S, gimlet::shape::ugimp, hmx, counted_distance, gimlet::field_list<>, Part> sol(sc, opt, {}, part);
     if (!two_bodies) {
         auto& ps = sol.particles();
         auto& v = ps.template column<f::velocity>();
@@ -213,6 +231,7 @@ void slot_lands_as_two_bodies(double cell, int samples) {
         auto self = slot<self_contact>(dv, false, true, cell);
         auto off = slot<self_contact>(dv, false, false, cell);
         std::size_t split = 0;
+        std::uint64_t onset_two = 0, onset_self = 0;  // the first step with an engaged pair
         for (int k = 0; k < samples; ++k) {
             const double after = first * (1.0 + 0.5 * k), at = meet + after;
             while (two.time() < at) {
@@ -222,6 +241,8 @@ void slot_lands_as_two_bodies(double cell, int samples) {
                 self.step(dt);
                 off.step(dt);
                 split = std::max(split, self.partition().split_nodes());
+                if (onset_two == 0 && two.contact().total.pairs > 0) onset_two = two.steps();
+                if (onset_self == 0 && self.contact().total.pairs > 0) onset_self = self.steps();
             }
             const auto [s2, t2] = centre(two);
             const auto [s1, t1] = centre(self);
@@ -236,8 +257,13 @@ void slot_lands_as_two_bodies(double cell, int samples) {
             // One field per body sticks where the faces first meet: the test can tell.
             CHECK(std::abs(s0 / s2 - 1) > 0.05);
         }
-        std::printf("  split nodes: %zu\n", split);
+        std::printf("  split nodes: %zu; contact begins at step %llu (two bodies) and %llu (self-contact)\n", split,
+                    static_cast<unsigned long long>(onset_two), static_cast<unsigned long long>(onset_self));
         CHECK(split > 0);
+        // No contact before the faces' domains meet: the law first engages a pair in the same
+        // step as between two bodies.
+        CHECK(onset_self == onset_two);
+        CHECK(onset_two > 0);
     }
 }
 

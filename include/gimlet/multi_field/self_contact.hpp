@@ -43,8 +43,10 @@ namespace multi_field {
 ///   normal of the particle with the largest S_ip m_p |n_p| there. The particles whose normal
 ///   points along e (n . e > 1/2) have their front at the largest (x_p - x_i) . e, those
 ///   pointing against it (n . e < -1/2) at the smallest. The node is split only if both groups
-///   are present and face each other across a gap: the second front lies beyond the first. Two
-///   faces of one ligament point away from each other, so a jet or a thin strip stays one field.
+///   are present and face each other across a gap: the second front lies beyond the first, and
+///   no particle of the body lies in the middle half between them. Two faces of one ligament
+///   point away from each other, so a jet or a thin strip stays one field; intact material just
+///   beyond a slot's tip, which both faces reach, fills the space between them.
 /// - At a split node every particle of the body goes by its side of the plane midway between
 ///   the fronts (field 0 behind the surface whose normal is e, field 1 beyond), so a particle
 ///   without a normal still has a side. A third surface at the node takes the side of the plane
@@ -169,14 +171,38 @@ struct self_contact {
                 if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
             });
         });
-        // A node is split where both fronts exist and the surface facing against e lies beyond
-        // the one facing along it: a gap between two faces, not the two faces of a ligament.
+        // A node is a candidate where both fronts exist and the surface facing against e lies
+        // beyond the one facing along it: a gap between two faces, not the two faces of a
+        // ligament.
         split_.assign(entries, 0);
+        bool any = false;
+        for (std::size_t e = 0; e < entries; ++e)
+            if (front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e])
+                split_[e] = 1, any = true;
+        // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in
+        // the middle half between the fronts means material there, as just beyond the tip of a
+        // slot, where both faces reach a node of the intact material ahead: no split.
+        if (any) {
+            view.for_each_particle_by_slab([&](std::size_t i) {
+                const std::size_t base = std::size_t(body[i]) * nodes;
+                const vector x = ps.template column<fields::position>()[i];
+                view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
+                    const std::size_t e = base + node;
+                    if (!(w > 0) || split_[e] != 1) return;
+                    const double quarter = 0.25 * (front_against_[e] - front_along_[e]);
+                    const vector ref = current(best_particle_[e]).normalized();
+                    const double along = double(view.grid.offset_from_node(node, x).dot(ref));
+                    if (along > front_along_[e] + quarter && along < front_against_[e] - quarter) split_[e] = 2;
+                });
+            });
+        }
         mid_.assign(entries, 0.0);
         reference_.assign(entries * std::size_t(dim), 0.0);
         for (std::size_t e = 0; e < entries; ++e) {
-            if (!(front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e])) continue;
-            split_[e] = 1;
+            if (split_[e] != 1) {
+                split_[e] = 0;
+                continue;
+            }
             ++split_nodes_;
             mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
             const vector ref = current(best_particle_[e]).normalized();
