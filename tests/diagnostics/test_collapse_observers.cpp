@@ -143,10 +143,12 @@ TEST_CASE("hot_spot: the hottest disc's mass-weighted mean temperature", "[diagn
 }
 
 TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying every centre", "[diagnostics]") {
-    // Temperatures from a fixed pseudo-random sequence with a few hot clusters and many ties:
-    // the hottest disc equals a brute-force search over every particle centre, and the disc the
-    // diagnostic names holds the particles and the mean it reports. (Which of several tied discs
-    // wins depends on the last bit of each sum, so the centre itself is not compared.)
+    // Temperatures from a fixed pseudo-random sequence with a few hot clusters and many ties,
+    // then uniform temperatures at several disc radii (where a disc's mean of equal values can
+    // round above the hottest particle): the hottest disc equals a brute-force search over every
+    // particle centre, and the disc the diagnostic names holds the particles and the mean it
+    // reports. (Which of several tied discs wins depends on the last bit of each sum, so the
+    // centre itself is not compared.)
     auto sol = two_blocks(2, 2);
     auto& ps = sol.particles();
     std::uint64_t state = 12345;
@@ -154,7 +156,7 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;
         return double(state >> 11) * 0x1p-53;
     };
-    const double radius = 0.75e-3;
+    double radius = 0.75e-3;
     auto disc = [&](const S::vector& c, std::size_t& count) {
         double mass = 0, heat = 0;
         count = 0;
@@ -166,10 +168,15 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
             }
         return heat / mass;
     };
-    for (int trial = 0; trial < 4; ++trial) {
+    const double uniform[] = {300.0, 345.06126582478936, 1000.0 / 3.0, 1e4 + 0.1};
+    const double radii[] = {0.2e-3, 0.75e-3, 2e-3};
+    for (int trial = 0; trial < 15; ++trial) {
+        const bool random = trial < 3;
+        radius = random ? 0.75e-3 : radii[(trial - 3) % 3];
         for (std::size_t i = 0; i < ps.size(); ++i) {
             const double u = next();
-            ps[i].get<temperature>() = trial == 3 ? 300.0 : (u < 0.02 ? 300.0 + 3000.0 * next() : 300.0 + std::floor(4 * u));
+            ps[i].get<temperature>() = !random ? uniform[(trial - 3) / 3]
+                                               : (u < 0.02 ? 300.0 + 3000.0 * next() : 300.0 + std::floor(4 * u));
         }
         const auto r = gimlet::diagnostics::hot_spot(sol, radius);
         double best = -1;
@@ -179,7 +186,8 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
         }
         std::size_t count = 0;
         const double at_centre = disc(r.centre, count);
-        INFO("trial " << trial);
+        INFO("trial " << trial << ", radius " << radius);
+        REQUIRE(std::isfinite(r.temperature));
         CHECK(r.temperature == Approx(best).epsilon(1e-12));
         CHECK(at_centre == Approx(r.temperature).epsilon(1e-12));
         CHECK(count == r.particles);

@@ -22,7 +22,7 @@ template <class Vector>
 struct hot_spot_result {
     double temperature = 0;      ///< K: mass-weighted mean temperature in the hottest disc
     double max_temperature = 0;  ///< K: the hottest single particle
-    Vector centre{};             ///< m: the particle centre the hottest disc is centred on
+    Vector centre{};             ///< m: the particle centre the hottest disc is centred on (zero if none)
     std::size_t particles = 0;   ///< particles in that disc
 };
 
@@ -42,6 +42,7 @@ template <class Solver>
     const auto& m = store.template column<fields::mass>();
     const auto& T = store.template column<fields::temperature>();
     hot_spot_result<vector> r;
+    r.centre = vector::Zero();
     const std::size_t n = store.size();
     if (n == 0) return r;
 
@@ -114,7 +115,9 @@ template <class Solver>
     // A disc's mean is at most the hottest particle of the 3^dim bins around its centre, so a
     // centre whose bins are all cooler than the disc around the hottest particle cannot hold
     // the hottest disc (nor tie with it) and is skipped: the result is that of trying every
-    // centre, at O(n) cost where the hot material is small.
+    // centre, at O(n) cost where the hot material is small. "Cooler" keeps a margin of 1e-9 of
+    // the floor: a computed mean of equal temperatures can round a few ulps above them, and
+    // without the margin every centre, the hottest particle's own included, could be skipped.
     std::vector<double> bin_max(total, -std::numeric_limits<double>::infinity());
     std::size_t hottest = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -124,11 +127,12 @@ template <class Solver>
     r.max_temperature = std::max(0.0, double(T[hottest]));
     std::size_t unused = 0;
     const double floor = disc(hottest, unused);
+    const double margin = 1e-9 * std::abs(floor);
     r.temperature = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
         double bound = -std::numeric_limits<double>::infinity();
         around(i, [&](std::size_t k) { bound = std::max(bound, bin_max[k]); });
-        if (bound < floor) continue;
+        if (bound < floor - margin) continue;
         std::size_t count = 0;
         const double mean = disc(i, count);
         if (mean > r.temperature) {
