@@ -336,3 +336,29 @@ TEST_CASE("von Mises inside the HMX material: uniaxial strain stays on the yield
     // All plastic work became heat: the Hugoniot part is positive too, so T >= T0 + w_p / c_v.
     CHECK(mp.p().template get<gimlet::fields::temperature>() > hmx.temperature + mp.w_p() / hmx.specific_heat);
 }
+
+// jaumann_rotate's plane-strain path (point_step::plane_strain, set by update_material_point in
+// 2-D) must be the same rotation as the general 3x3 Cayley form, out-of-plane columns included,
+// and keep the invariants: the 2-D hot path relies on it.
+TEST_CASE("Jaumann rotation: the plane-strain path equals the 3x3 form", "[verification][strength]") {
+    using T3 = Eigen::Matrix3d;
+    for (int k = 0; k < 50; ++k) {
+        const double phase = 0.37 * k;
+        T3 s;
+        s << std::sin(phase), 0.3 * std::cos(2 * phase), 0.2 * std::sin(3 * phase),  //
+            0.3 * std::cos(2 * phase), -0.7 * std::cos(phase), -0.1 * std::cos(5 * phase),  //
+            0.2 * std::sin(3 * phase), -0.1 * std::cos(5 * phase), 0.4 * std::sin(7 * phase);
+        s *= 1e9;
+        gimlet::point_step<double> st;
+        st.dt = 1e-8;
+        const double spin = 1e7 * std::sin(1.3 * k) * (k % 7 == 0 ? 30.0 : 1.0);  // up to |dt W / 2| = 1.5
+        st.W(1, 0) = spin;
+        st.W(0, 1) = -spin;
+        const T3 general = gimlet::strength::jaumann_rotate(st, s);
+        st.plane_strain = true;
+        const T3 planar = gimlet::strength::jaumann_rotate(st, s);
+        CHECK((planar - general).cwiseAbs().maxCoeff() <= 1e-15 * s.cwiseAbs().maxCoeff());
+        CHECK(std::abs(planar.squaredNorm() - s.squaredNorm()) <= 1e-14 * s.squaredNorm());
+        CHECK(planar(2, 2) == s(2, 2));
+    }
+}

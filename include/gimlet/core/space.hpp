@@ -4,6 +4,8 @@
 /// The space a solver works in: its dimension and its scalar type, and the small fixed-size
 /// Eigen types derived from them.
 
+#include "gimlet/core/detail/inline.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/LU>  // determinant
 #include <concepts>
@@ -38,7 +40,7 @@ concept Space = requires {
 
 /// Embed an in-plane tensor into 3x3 (zero out-of-plane entries); identity in 3-D.
 template <class Real, int Dim>
-[[nodiscard]] Eigen::Matrix<Real, 3, 3> embed3(const Eigen::Matrix<Real, Dim, Dim>& a) {
+[[nodiscard]] GIMLET_INLINE Eigen::Matrix<Real, 3, 3> embed3(const Eigen::Matrix<Real, Dim, Dim>& a) {
     if constexpr (Dim == 3) {
         return a;
     } else {
@@ -50,7 +52,7 @@ template <class Real, int Dim>
 
 /// The in-plane block of a 3x3 tensor; identity in 3-D.
 template <int Dim, class Real>
-[[nodiscard]] Eigen::Matrix<Real, Dim, Dim> in_plane(const Eigen::Matrix<Real, 3, 3>& a) {
+[[nodiscard]] GIMLET_INLINE Eigen::Matrix<Real, Dim, Dim> in_plane(const Eigen::Matrix<Real, 3, 3>& a) {
     return a.template topLeftCorner<Dim, Dim>();
 }
 

@@ -99,7 +99,19 @@ void update_material_point(const M& mat, const P& p,
     // section 1, step 5). Unlike the forward-Euler (I + dt L) F, it keeps det F = 1 exactly under
     // a rigid spin, so a rotating body gains no spurious pressure; both are first-order consistent.
     const matrix half = real(0.5) * dt * L;
-    F = (matrix::Identity() - half).inverse() * ((matrix::Identity() + half) * F);
+    if constexpr (dim == 2) {
+        // The same map with the 2x2 inverse written out: inv(I - A) = adj(I - A) / det(I - A).
+        const real m00 = real(1) - half(0, 0), m01 = -half(0, 1), m10 = -half(1, 0), m11 = real(1) - half(1, 1);
+        const real inv_det = real(1) / (m00 * m11 - m10 * m01);
+        const real i00 = m11 * inv_det, i01 = -m01 * inv_det, i10 = -m10 * inv_det, i11 = m00 * inv_det;
+        const matrix b = (matrix::Identity() + half) * F;
+        F(0, 0) = i00 * b(0, 0) + i01 * b(1, 0);
+        F(1, 0) = i10 * b(0, 0) + i11 * b(1, 0);
+        F(0, 1) = i00 * b(0, 1) + i01 * b(1, 1);
+        F(1, 1) = i10 * b(0, 1) + i11 * b(1, 1);
+    } else {
+        F = (matrix::Identity() - half).inverse() * ((matrix::Identity() + half) * F);
+    }
 
     point_step<real> st;
     static_cast<point_state<real>&>(st) = point_state_of(p, mat);
@@ -113,9 +125,19 @@ void update_material_point(const M& mat, const P& p,
     st.J_old = j_old;
     st.step = step;
     st.time = time;
-    const tensor3 l3 = embed3<real, dim>(L);
-    st.D = real(0.5) * (l3 + l3.transpose());
-    st.W = real(0.5) * (l3 - l3.transpose());
+    if constexpr (dim == 2) {
+        // Plane strain: only the in-plane entries of D and W (point_step's are zero already).
+        st.plane_strain = true;
+        const real shear = real(0.5) * (L(0, 1) + L(1, 0)), spin = real(0.5) * (L(1, 0) - L(0, 1));
+        st.D(0, 0) = L(0, 0);
+        st.D(1, 1) = L(1, 1);
+        st.D(0, 1) = st.D(1, 0) = shear;
+        st.W(1, 0) = spin;
+        st.W(0, 1) = -spin;
+    } else {
+        st.D = real(0.5) * (L + L.transpose());
+        st.W = real(0.5) * (L - L.transpose());
+    }
     st.length = cell;
 
     const tensor3 sigma_old = stress3(p);
@@ -133,7 +155,12 @@ void update_material_point(const M& mat, const P& p,
     real& e = p.template get<fields::specific_internal_energy>();
     const real v_mid = real(0.5) * (real(1) + j_old / st.J) / st.density;
     const tensor3 known = real(0.5) * (sigma_old + s - q * tensor3::Identity());
-    st.energy_before_pressure = e + dt * v_mid * known.cwiseProduct(st.D).sum();
+    real power;  // known : D
+    if constexpr (dim == 2)  // the zz term is zero (D_zz = 0 in plane strain)
+        power = (known(0, 0) * st.D(0, 0) + known(1, 1) * st.D(1, 1)) + (known(1, 0) * st.D(1, 0) + known(0, 1) * st.D(0, 1));
+    else
+        power = known.cwiseProduct(st.D).sum();
+    st.energy_before_pressure = e + dt * v_mid * power;
     st.pressure_work_factor = real(0.5) * dt * st.D.trace() * v_mid;
     // The stored elastic shear energy s:s / (4 G rho) (linear elasticity of the deviator): in e,
     // but not heat (docs/equations.md, thermal::isentrope_temperature). Computed only for a
