@@ -265,7 +265,7 @@ struct summary {
     double max_wall_relative_velocity = 0;  // m/s
     double max_upstream_speed = 0;          // m/s: the paper's jet speed, its largest
     double max_hot_spot = 0, max_temperature = 0;  // K
-    double max_eta = 0;  // the largest particle compression 1 - det F at any sample
+    double max_eta = 0;  // the largest particle compression 1 - det F at any step (tracked every step)
     double t_hot_spot = -1;
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
     // part of the heating reverses on release); what stays is plastic work and shock entropy.

@@ -3,6 +3,8 @@
 // of a closing void in separate velocity fields where they meet, and one field everywhere else.
 // - a body without a void, strained and rotated, and a strip 1.5 cells thick, translated and
 //   rotated, never open a second field;
+// - a slot's faces are still found after a rigid rotation and a large shear (the normal's
+//   cof(F) transform);
 // - a cavity whose walls never meet gives bit-identical results with self-contact and with one
 //   field per body;
 // - a planar slot in one body closing at 1000 and 3000 m/s lands as two bodies meeting at that
@@ -114,6 +116,63 @@ TEST_CASE("self-contact: a body without a void and a thin strip never open a sec
         std::printf("thin strip translated and rotated: %llu steps, %.2f us, largest split nodes %zu\n",
                     static_cast<unsigned long long>(sol.steps()), double(sol.time()) * 1e6, most);
         CHECK(most == 0);
+    }
+}
+
+TEST_CASE("self-contact: a slot's faces are found after a rigid rotation and a large shear",
+          "[multi_field][self_contact]") {
+    // A slot one cell wide in a 14 x 14 cell block, mapped as a whole by F (positions about the
+    // centre and every particle's F): the current normal is cof(F) n0, so the two faces stay
+    // parallel to the slot and keep facing each other. A rotation by 1.4 rad tells a rotated
+    // normal from the reference one (which then points along the slot); a shear of 3 along the
+    // slot tells cof(F) n0 = F^-T n0 J, still across the slot, from F n0, tilted 72 degrees
+    // towards it, along which the two faces' fronts no longer separate. Each case is checked
+    // in the first step, before anything moves.
+    const double h = 1e-3;
+    const auto mat = gimlet::make_elastic_material(1000, 1e9, 0.25);
+    gimlet::scene::scene<S, elastic> sc(open_grid(h, 32 * h));
+    sc.add_body(gimlet::scene::difference(box(vec(-7 * h, -7 * h), vec(7 * h, 7 * h)),
+                                          box(vec(-5 * h, -0.5 * h), vec(5 * h, 0.5 * h))),
+                mat, vec::Zero(), 2, "slotted");
+    auto split_after = [&](const S::matrix& F) {
+        solver_t<elastic> sol(sc, one_thread());
+        auto& ps = sol.particles();
+        for (std::size_t i = 0; i < ps.size(); ++i) {
+            auto p = ps[i];
+            p.template get<f::position>() = F * p.template get<f::position>();
+            p.template get<f::deformation_gradient>() = F;
+        }
+        sol.step(1e-12);
+        return sol.partition().split_nodes();
+    };
+    const std::size_t undeformed = split_after(S::matrix::Identity());
+    const double a = 1.4;
+    S::matrix rotation, shear;
+    rotation << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+    shear << 1, 3, 0, 1;
+    const std::size_t rotated = split_after(rotation), sheared = split_after(shear);
+    std::printf("slot: split nodes %zu undeformed, %zu rotated by 1.4 rad, %zu sheared by 3\n", undeformed, rotated,
+                sheared);
+    // The slot's interior spans about 10 nodes; a mapped slot may cross one node fewer. (With
+    // the reference normal: 4 after the rotation; with F n0: 2 after the shear.)
+    CHECK(undeformed >= 9);
+    CHECK(rotated + 1 >= undeformed);
+    CHECK(sheared + 1 >= undeformed);
+}
+
+TEST_CASE("self-contact: a surface cut-off outside (0, 1) is refused by name", "[multi_field][self_contact]") {
+    // At 0 every bulk particle would get a round-off normal in a random direction (4 split
+    // nodes in a block without a void); at 1 or NaN no particle would get one (self-contact
+    // silently off).
+    const double h = 1e-3;
+    gimlet::scene::scene<S, elastic> sc(open_grid(h, 16 * h));
+    sc.add_body(box(vec(-6 * h, -4 * h), vec(6 * h, 4 * h)), gimlet::make_elastic_material(1000, 1e9, 0.25),
+                vec::Zero(), 2, "block");
+    for (const double cutoff : {0.0, -0.1, 1.0, std::nan("")}) {
+        self_contact part;
+        part.surface_cutoff = cutoff;
+        CHECK_THROWS_AS((solver_t<elastic>(sc, one_thread(), gimlet::contact::distance(), part)), gimlet::invalid_parameter);
+        CHECK_THROWS_WITH((solver_t<elastic>(sc, one_thread(), gimlet::contact::distance(), part)), Catch::Contains("surface_cutoff"));
     }
 }
 

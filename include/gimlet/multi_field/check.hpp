@@ -37,6 +37,9 @@ consteval bool check() {
     static_assert(declares_required_fields<P>,
                   "partition: needs `using required_fields = gimlet::field_list<...>;` (field_list<> if it reads "
                   "no per-particle state of its own)");
+    static_assert(!requires(P& p) { p.splits(); } || requires(const P& p) {
+        { p.splits() } -> std::convertible_to<bool>;
+    }, "partition: splits must be `bool splits() const` (asked after prepare; false: every side is 0 this step)");
     if constexpr (check_detail::has_count<P> && declares_required_fields<P>) {
         static_assert(P::fields_per_body >= 1 && P::fields_per_body <= 255,
                       "partition: fields_per_body must be in [1, 255]");

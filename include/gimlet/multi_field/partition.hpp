@@ -27,13 +27,20 @@ namespace gimlet::multi_field {
 /// splitting changes nothing until two fields of a body meet at a node.
 ///
 /// Two optional hooks let a partition look at the grid (multi_field::self_contact uses both):
-/// - `initialize(view)`: once, when the solver is built from a scene (not on a checkpoint
-///   restore, which brings the particles' fields back), with the particles writable;
-/// - `prepare(view)`: at the start of every step, before the solver asks `side`, with the
-///   particles read-only (a partition keeps what it learns in its own members).
-/// Both get a multi_field::partition_view. The solver calls a hook only if the partition has it.
-/// A third, `bool splits() const`, asked after `prepare`, may return false to say that every
-/// side is 0 this step, so the solver need not ask `side` particle by particle.
+/// - `initialize(view)`: once, in the solver's constructor, with the particles writable (a
+///   checkpoint loaded afterwards overwrites the fields it set with the saved ones);
+/// - `prepare(view)`: at the start of every step (whatever fields_per_body), after the weights
+///   and before the solver asks `side`, with the particles read-only (a partition keeps what it
+///   learns in its own members).
+/// Both get a multi_field::partition_view; write them as templates, `template <class View>
+/// void prepare(const View& view)`. The solver calls a hook only if the partition has it, so a
+/// hook with another name or a signature the solver cannot call is not an error: it is never
+/// called. A third, `bool splits() const`, asked after `prepare`, may return false to say that
+/// every side is 0 this step, so the solver need not ask `side` particle by particle
+/// (multi_field::check refuses a non-const one).
+/// Particle indices are those of the store at the time of the call: the solver renumbers the
+/// particles when it sorts them (solver_options::sort_interval), so per-particle state belongs
+/// in `required_fields`, not in members indexed by particle.
 template <class P>
 concept Partition = requires {
     { P::fields_per_body } -> std::convertible_to<std::size_t>;
@@ -51,9 +58,10 @@ concept Partition = requires {
 /// `initialize`), each particle's stencil at the current positions (`stencils[i].for_each(
 /// f(node, S_ip, G_ip))`, nodes by storage index), the grid (node_position, offset_from_node,
 /// size) and the number of bodies. `for_each_particle_by_slab(f)` calls f(i) for every particle
-/// in an order that lets f add into per-node arrays without races: every node sums its
-/// particles' contributions in an order fixed by the grid and the particle order, whatever the
-/// thread count (so results stay thread-independent). f must not throw.
+/// in an order that lets f add into per-node arrays without races at the nodes of particle i's
+/// own stencil (not at other nodes): every such node sums its particles' contributions in an
+/// order fixed by the grid and the particle order, whatever the thread count (so results stay
+/// thread-independent). f must not throw.
 template <class Store, class Stencils, class Grid, class BySlab>
 struct partition_view {
     Store& particles;

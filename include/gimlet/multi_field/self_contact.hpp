@@ -5,6 +5,7 @@
 /// they meet, so the multi-field contact laws act on them as between bodies (docs/equations.md,
 /// "Self-contact"; after the field-gradient partitioning of Homel & Herbold 2017, IJNME 109).
 
+#include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/space.hpp"
 #include "gimlet/multi_field/partition.hpp"
@@ -21,8 +22,10 @@ namespace gimlet {
 
 namespace fields {
 /// The outward normal of the body's surface near the particle in the reference configuration,
-/// scaled by the body's surface field there: about 1 at a free surface, falling to 0 two cells
-/// into the body, exactly 0 in the bulk. Set once by multi_field::self_contact when the solver
+/// scaled by the body's surface field there: about 1 at a free surface, a third one particle row
+/// in, exactly 0 from the third row (at 2 x 2 particles per cell). A feature one cell thick or
+/// less (a plate of two particle rows) has no normal on a face whose opposite face lies within
+/// a cell: the two faces' mass gradients cancel at the nodes between them. Set once by multi_field::self_contact when the solver
 /// is built; carried by the material (the current normal is cof(F) times it).
 struct surface_normal {
     template <class S> using type = typename S::vector;
@@ -58,7 +61,8 @@ struct self_contact {
     static constexpr std::size_t fields_per_body = 2;
 
     bool enabled = true;
-    /// Particles whose surface field is below this fraction of the body's largest are bulk.
+    /// Particles whose surface field is below this fraction of the body's largest are bulk; in
+    /// (0, 1), checked when the solver is built (at 0 round-off gives bulk particles normals).
     double surface_cutoff = 0.05;
 
     /// The surface normals at t = 0 (multi_field::Partition's initialize hook).
@@ -68,6 +72,8 @@ struct self_contact {
         using S = typename store_t::space_type;
         using vector = typename S::vector;
         using real = typename S::real;
+        require(surface_cutoff > 0 && surface_cutoff < 1, "self_contact::surface_cutoff", surface_cutoff,
+                "(0, 1): a fraction of the body's largest surface field");
         auto& ps = view.particles;
         const std::size_t nodes = view.grid.size(), n = ps.size();
         const auto& mass = ps.template column<fields::mass>();

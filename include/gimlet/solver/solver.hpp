@@ -319,9 +319,13 @@ private:
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
         slabs_.bucket();
+        // Asked of any partition that has it, whatever its fields_per_body; the view is a const
+        // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
+        if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); }) {
+            const auto view = partition_view<const store_type>();
+            partition_.prepare(view);
+        }
         if constexpr (fields_per_body > 1) {
-            if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); })
-                partition_.prepare(partition_view<const store_type>());
             choose_fields();
             lap(timings_.particle_to_grid);
         }
