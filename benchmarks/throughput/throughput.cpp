@@ -5,7 +5,9 @@
 //                      single field (issue 6's reference scene at --cell 0.5: 64,000 particles)
 //   --scene hmx        the same blocks in the paper's HMX (von Mises + Mie-Grueneisen + viscosity
 //                      + heating) with the distance-switched contact, touching from the start
-//                      so every timed step resolves contact
+//                      so every timed step resolves contact, and the flagship's defaults:
+//                      self-contact on (multi_field::self_contact; no void here, so what a
+//                      user pays for having it), FLIP, no volumetric averaging
 // Flags: --cell MM (0.5), --steps N (1000 at 0.5 mm; scaled by particle count if omitted),
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
 //        the share of each phase of the step, from solver::timings(), on stderr).
@@ -66,7 +68,8 @@ int main(int argc, char** argv) try {
                                dt, steps, repeats);
     } else if (scene == "hmx") {
         using material = gimlet::materials::hmx_material<>;
-        using solver = gimlet::solver<bench::S2, gimlet::shape::ugimp, material, gimlet::contact::distance>;
+        using solver = gimlet::solver<bench::S2, gimlet::shape::ugimp, material, gimlet::contact::distance,
+                                      gimlet::field_list<>, gimlet::multi_field::self_contact>;
         r = time_scene<solver>([&] { return solver(bench::two_blocks(gimlet::materials::make_hmx(), cell, 0.0), opt); },
                                dt, steps, repeats);
     } else {
