@@ -158,7 +158,7 @@ def main(res, plots):
             m = sorted(((int(r["particles"]), num(r["mups_median"])) for r in sc
                         if r["scene"] == scene and r["threads"] == t))
             if m:
-                label = ("elastic (reference)" if scene == "reference" else "HMX + distance contact") + f", {t} thr."
+                label = ("elastic (reference)" if scene == "reference" else "HMX, flagship defaults") + f", {t} thr."
                 ax.plot([p[0] for p in m], [p[1] for p in m], style, ms=4, label=label)
         ax.set_xscale("log")
         ax.set_xlabel("particles")
