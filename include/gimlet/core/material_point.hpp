@@ -29,9 +29,6 @@ struct point_step : point_state<Real> {
     Real J_old = 1;            ///< det F at the start of the step
     tensor3 D = tensor3::Zero();  ///< rate of deformation, sym(L)
     tensor3 W = tensor3::Zero();  ///< spin, skew(L)
-    /// True in plane strain (2-D): D and W have no out-of-plane entries (the stress still has
-    /// sigma_zz), so a law may take a cheaper path, as jaumann_rotate does.
-    bool plane_strain = false;
     Real length = 0;           ///< grid cell size h: the length a shock is spread over, for viscosity
     /// Specific internal energy at the end of the step without the pressure's own work:
     /// e^n + dt v_mid sigma_mid' : D with sigma_mid' the midpoint stress less the end-of-step
@@ -48,6 +45,11 @@ struct point_step : point_state<Real> {
     Real shear_energy = 0;
     std::size_t step = 0;      ///< step number, for error messages
     double time = 0;           ///< simulated time at the start of the step (s), for messages
+    /// True in plane strain (2-D; set by update_material_point): D and W have no out-of-plane
+    /// entries (the stress still has sigma_zz), so a law may take a cheaper path, as
+    /// jaumann_rotate does. Leave it false when building a step by hand unless that holds.
+    /// (Last, so positional initialisers written before it keep their meaning.)
+    bool plane_strain = false;
 };
 
 /// The particle handle a policy sees in concept checks: a store holding the core fields plus

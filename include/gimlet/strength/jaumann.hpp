@@ -5,6 +5,8 @@
 
 #include "gimlet/core/material_point.hpp"
 
+#include <cassert>
+
 namespace gimlet::strength {
 
 /// The deviator a - tr(a)/3 I of a 3x3 tensor.
@@ -24,6 +26,8 @@ template <class Real>
     // For a skew A = dt W/2 with axial vector a, the Cayley transform has the closed form
     // (I - A)^-1 (I + A) = I + 2 (A + A^2) / (1 + |a|^2) (Rodrigues' form of the Cayley map),
     // which avoids a 3x3 inverse per particle and step.
+    // Precondition of the plane-strain path: W spins about z only (checked in debug builds).
+    assert(!st.plane_strain || (st.W(0, 2) == 0 && st.W(1, 2) == 0 && st.W(2, 0) == 0 && st.W(2, 1) == 0));
     if (st.plane_strain) {
         // W spins about z only: Q = [[c, -r, 0], [r, c, 0], [0, 0, 1]] with
         // c = 1 - 2 w^2 / (1 + w^2), r = 2 w / (1 + w^2), w = dt W_yx / 2 (the same map): rotate
