@@ -5,6 +5,7 @@
 //   rotated, never open a second field;
 // - a slot's faces are still found after a rigid rotation and a large shear (the normal's
 //   cof(F) transform);
+// - a surface cut-off outside (0, 1) is refused by name;
 // - a cavity whose walls never meet gives bit-identical results with self-contact and with one
 //   field per body;
 // - a planar slot in one body closing at 1000 and 3000 m/s lands as two bodies meeting at that

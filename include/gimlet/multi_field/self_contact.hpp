@@ -25,8 +25,9 @@ namespace fields {
 /// scaled by the body's surface field there: about 1 at a free surface, a third one particle row
 /// in, exactly 0 from the third row (at 2 x 2 particles per cell). A feature one cell thick or
 /// less (a plate of two particle rows) has no normal on a face whose opposite face lies within
-/// a cell: the two faces' mass gradients cancel at the nodes between them. Set once by multi_field::self_contact when the solver
-/// is built; carried by the material (the current normal is cof(F) times it).
+/// a cell: the two faces' mass gradients cancel at the nodes between them. Set once by
+/// multi_field::self_contact when the solver is built; carried by the material (the current
+/// normal is cof(F) times it).
 struct surface_normal {
     template <class S> using type = typename S::vector;
     static constexpr const char* name = "surface_normal";

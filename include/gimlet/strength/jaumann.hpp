@@ -29,10 +29,11 @@ template <class Real>
     // Precondition of the plane-strain path: W spins about z only (checked in debug builds).
     assert(!st.plane_strain || (st.W(0, 2) == 0 && st.W(1, 2) == 0 && st.W(2, 0) == 0 && st.W(2, 1) == 0));
     if (st.plane_strain) {
-        // W spins about z only: Q = [[c, -r, 0], [r, c, 0], [0, 0, 1]] with
-        // c = 1 - 2 w^2 / (1 + w^2), r = 2 w / (1 + w^2), w = dt W_yx / 2 (the same map): rotate
-        // the in-plane block and the two out-of-plane columns, s_zz is unchanged. A third of
-        // the work of the 3x3 form, a plane-strain step's largest single cost (docs/performance.md).
+        // The same map with a about z only: Q = [[c, -r, 0], [r, c, 0], [0, 0, 1]],
+        // c = 1 - 2 w^2 / (1 + w^2), r = 2 w / (1 + w^2), w = dt W_yx / 2. It rotates the
+        // in-plane block and the out-of-plane rows and columns, s_zz is unchanged: a third of
+        // the 3x3 form's products, with its operands in its order (the same bits in a portable
+        // build; docs/performance.md).
         const Real w = Real(0.5) * st.dt * st.W(1, 0);
         const Real k = Real(2) / (Real(1) + w * w);
         const Real c = Real(1) - k * (w * w), r = k * w;
