@@ -8,10 +8,14 @@ than the bulk shock temperature T_EP(v) by each excess (the cumulative hot-spot 
 snapshot, like the paper's snapshot figures.
 """
 import csv
+import math
+import os
 import sys
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -29,64 +33,80 @@ def read(path):
     return {k: [number(r[k]) for r in rows] for k in rows[0]} if rows else {}
 
 
-out = Path(sys.argv[1])
-s = read(out / "series.csv")
-t = s["time_after_contact_us"]
-fig, ax = plt.subplots(4, 1, figsize=(6.4, 9.4), sharex=True)
-ax[0].plot(t, s["D_mm"], lw=1.2)
-ax[0].set_ylabel("D (mm)")
-ax[1].plot(t, s["wall_relative_velocity_m_s"], lw=1.0)
-ax[1].set_ylabel("relative wall\nvelocity (m/s)")
-ax[2].plot(t, s["max_temperature_K"], lw=1.0, label="hottest particle")
-ax[2].plot(t, s["hotspot_temperature_K"], lw=1.2, label="hot spot (disc mean)")
-ax[2].set_ylabel("temperature (K)")
-ax[2].legend()
-# The hot-spot distribution: mass hotter than the bulk shock temperature T_EP(v) by each excess.
-hot = [k for k in s if k.startswith("hot_mass_above_TEP_plus_")]
-for k in hot:
-    excess = k[len("hot_mass_above_TEP_plus_"):].split("K")[0]
-    ax[3].plot(t, [1e3 * v for v in s[k]], lw=1.0, label=f"T - T_EP > {excess} K")
-ax[3].set_ylabel("hot mass (g/m)")
-ax[3].set_yscale("symlog", linthresh=1e-3)
-if hot:
-    ax[3].legend(fontsize=7)
-ax[3].set_xlabel("time after contact (us)")
-fig.tight_layout()
-fig.savefig(out / "series.png", dpi=110)
-plt.close(fig)
+def read_map(path):
+    """A particle map (all numbers) as one numpy column per field: the maps hold every particle,
+    and matplotlib converts Python lists of that length element by element."""
+    with path.open() as f:
+        names = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return {k: data[:, j] for j, k in enumerate(names)}
 
-# The cumulative hot-spot curve: the largest mass over the run above T_EP + excess.
-summary = read(out / "summary.csv") if (out / "summary.csv").exists() else {}
-levels = [k for k in summary if k.startswith("max_hot_mass_above_TEP_plus_")]
-if levels:
-    excess = [float(k[len("max_hot_mass_above_TEP_plus_"):].split("K")[0]) for k in levels]
-    fig, a = plt.subplots(figsize=(5.0, 3.6))
-    a.plot(excess, [1e3 * summary[k][0] for k in levels], "o-")
-    a.set_xscale("log")
-    a.set_yscale("symlog", linthresh=1e-3)
-    a.set_xlabel("T - T_EP (K)")
-    a.set_ylabel("largest mass above it (g/m)")
-    a.set_title(f"hot material, T_EP = {summary['bulk_shock_temperature_K'][0]:.1f} K", fontsize=9)
+
+def quantile_999(values):
+    """The value at rank int(0.999 (n - 1)) of the sorted values."""
+    k = int(0.999 * (len(values) - 1))
+    return np.partition(values, k)[k]
+
+
+def plot_series(out):
+    """series.png: the run's time series."""
+    s = read(out / "series.csv")
+    t = s["time_after_contact_us"]
+    fig, ax = plt.subplots(4, 1, figsize=(6.4, 9.4), sharex=True)
+    ax[0].plot(t, s["D_mm"], lw=1.2)
+    ax[0].set_ylabel("D (mm)")
+    ax[1].plot(t, s["wall_relative_velocity_m_s"], lw=1.0)
+    ax[1].set_ylabel("relative wall\nvelocity (m/s)")
+    ax[2].plot(t, s["max_temperature_K"], lw=1.0, label="hottest particle")
+    ax[2].plot(t, s["hotspot_temperature_K"], lw=1.2, label="hot spot (disc mean)")
+    ax[2].set_ylabel("temperature (K)")
+    ax[2].legend()
+    # The hot-spot distribution: mass hotter than the bulk shock temperature T_EP(v) by each excess.
+    hot = [k for k in s if k.startswith("hot_mass_above_TEP_plus_")]
+    for k in hot:
+        excess = k[len("hot_mass_above_TEP_plus_"):].split("K")[0]
+        ax[3].plot(t, [1e3 * v for v in s[k]], lw=1.0, label=f"T - T_EP > {excess} K")
+    ax[3].set_ylabel("hot mass (g/m)")
+    ax[3].set_yscale("symlog", linthresh=1e-3)
+    if hot:
+        ax[3].legend(fontsize=7)
+    ax[3].set_xlabel("time after contact (us)")
     fig.tight_layout()
-    fig.savefig(out / "hot_material.png", dpi=110)
+    fig.savefig(out / "series.png", dpi=110)
     plt.close(fig)
 
-# 2 x 2 particles per cell
-spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
-snaps = out / "snapshots"
-times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
-for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", [])):
-    m = read(snaps / f"map_{int(i):04d}.csv")
+
+def plot_hot_material(out):
+    """hot_material.png: the cumulative hot-spot curve."""
+    # The cumulative hot-spot curve: the largest mass over the run above T_EP + excess.
+    summary = read(out / "summary.csv") if (out / "summary.csv").exists() else {}
+    levels = [k for k in summary if k.startswith("max_hot_mass_above_TEP_plus_")]
+    if levels:
+        excess = [float(k[len("max_hot_mass_above_TEP_plus_"):].split("K")[0]) for k in levels]
+        fig, a = plt.subplots(figsize=(5.0, 3.6))
+        a.plot(excess, [1e3 * summary[k][0] for k in levels], "o-")
+        a.set_xscale("log")
+        a.set_yscale("symlog", linthresh=1e-3)
+        a.set_xlabel("T - T_EP (K)")
+        a.set_ylabel("largest mass above it (g/m)")
+        a.set_title(f"hot material, T_EP = {summary['bulk_shock_temperature_K'][0]:.1f} K", fontsize=9)
+        fig.tight_layout()
+        fig.savefig(out / "hot_material.png", dpi=110)
+        plt.close(fig)
+
+def plot_map(out, spacing, i, tc):
+    """map_NNNN.png: pressure and temperature of every particle at one snapshot."""
+    m = read_map(out / "snapshots" / f"map_{int(i):04d}.csv")
     fig, ax = plt.subplots(1, 2, figsize=(8.0, 5.2), sharey=True)
     # Marker area (points^2) that tiles the particle spacing at this figure size.
-    span = max(m["y_mm"]) - min(m["y_mm"])
+    span = m["y_mm"].max() - m["y_mm"].min()
     size = (4.2 * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
     for a, key, label, cmap, lo in ((ax[0], "pressure_MPa", "pressure (MPa)", "viridis", None),
                                     (ax[1], "temperature_K", "temperature (K)", "inferno", 300.0)):
-        vals = sorted(m[key])
-        hi = vals[int(0.999 * (len(vals) - 1))]  # a few extreme particles would wash out the map
+        hi = quantile_999(m[key])  # a few extreme particles would wash out the map
         sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
                        linewidths=0, rasterized=True)
+        sc.set_in_layout(False)  # clipped to the axes; its extent over every marker is slow to find
         a.set_aspect("equal")
         a.set_xlabel("x (mm)")
         fig.colorbar(sc, ax=a, label=label, shrink=0.8)
@@ -96,54 +116,68 @@ for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))
     fig.savefig(out / f"map_{int(i):04d}.png", dpi=100)
     plt.close(fig)
 
+
 # All snapshots in one figure per quantity, like the paper's snapshot figures: the whole pair of
 # blocks in pressure, the upper block in temperature (the paper shows only that one). The panels
 # form a grid whose shape keeps the figure near 4:3 with few empty panels, each titled with its
 # time, and share one colour scale and one colour bar.
-if len(times.get("index", [])) >= 2:
-    import math
-    for key, label, cmap, lo, name, upper_only in (
+def plot_maps(out, spacing, times, key, label, cmap, lo, name, upper_only):
+    """maps_pressure.png / maps_temperature.png: every snapshot of one quantity."""
+    n = len(times["index"])
+    panels = [read_map(out / "snapshots" / f"map_{int(i):04d}.csv") for i in times["index"]]
+    if upper_only:
+        panels = [{k: col[m["body"] == 1] for k, col in m.items()} for m in panels]
+    # Panel height over width, from the particles' extent.
+    ratio = max((m["y_mm"].max() - m["y_mm"].min()) / max(m["x_mm"].max() - m["x_mm"].min(), 1e-9) for m in panels)
+    best = None
+    for cols in range(1, n + 1):
+        rows = math.ceil(n / cols)
+        if rows * cols - n >= cols:
+            continue  # a whole empty row
+        miss = abs(rows * ratio / cols - 0.75) + 0.1 * (rows * cols - n)  # empty panels cost too
+        if best is None or miss < best[0]:
+            best = (miss, rows, cols)
+    _, rows, cols = best
+    width = 2.4  # inches per panel
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols + 1.0, width * ratio * rows + 0.3 * rows + 0.3),
+                             squeeze=False, sharex=True, sharey=True, layout="constrained")
+    hi = quantile_999(np.concatenate([m[key] for m in panels]))
+    for k, a in enumerate(axes.ravel()):
+        if k >= n:
+            a.axis("off")
+            continue
+        m, tc = panels[k], times["time_after_contact_us"][k]
+        span = m["y_mm"].max() - m["y_mm"].min()
+        size = (width * ratio * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
+        sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
+                       linewidths=0, rasterized=True)
+        sc.set_in_layout(False)
+        a.set_aspect("equal")
+        a.set_title(f"t = {tc:.1f} us after contact", fontsize=9)
+        a.tick_params(labelsize=7)
+    for a in axes[:, 0]:
+        a.set_ylabel("y (mm)", fontsize=8)
+    for a in axes[-1, :]:
+        a.set_xlabel("x (mm)", fontsize=8)
+    fig.colorbar(sc, ax=axes.ravel().tolist(), label=label, shrink=0.9, fraction=0.04, pad=0.01)
+    fig.savefig(out / name, dpi=90)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    out = Path(sys.argv[1])
+    # 2 x 2 particles per cell
+    spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
+    snaps = out / "snapshots"
+    times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
+    jobs = [(plot_series, (out,)), (plot_hot_material, (out,))]
+    jobs += [(plot_map, (out, spacing, i, tc))
+             for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))]
+    if len(times.get("index", [])) >= 2:
+        jobs += [(plot_maps, (out, spacing, times) + panel) for panel in (
             ("pressure_MPa", "pressure (MPa)", "viridis", None, "maps_pressure.png", False),
-            ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True)):
-        n = len(times["index"])
-        maps = [read(snaps / f"map_{int(i):04d}.csv") for i in times["index"]]
-        for m in maps:
-            if upper_only:
-                keep = [j for j, b in enumerate(m["body"]) if b == 1]
-                for k in m:
-                    m[k] = [m[k][j] for j in keep]
-        # Panel height over width, from the particles' extent.
-        ratio = max((max(m["y_mm"]) - min(m["y_mm"])) / max(max(m["x_mm"]) - min(m["x_mm"]), 1e-9) for m in maps)
-        best = None
-        for cols in range(1, n + 1):
-            rows = math.ceil(n / cols)
-            if rows * cols - n >= cols:
-                continue  # a whole empty row
-            miss = abs(rows * ratio / cols - 0.75) + 0.1 * (rows * cols - n)  # empty panels cost too
-            if best is None or miss < best[0]:
-                best = (miss, rows, cols)
-        _, rows, cols = best
-        width = 2.4  # inches per panel
-        fig, axes = plt.subplots(rows, cols, figsize=(width * cols + 1.0, width * ratio * rows + 0.3 * rows + 0.3),
-                                 squeeze=False, sharex=True, sharey=True, layout="constrained")
-        every = sorted(v for m in maps for v in m[key])
-        hi = every[int(0.999 * (len(every) - 1))]
-        for k, a in enumerate(axes.ravel()):
-            if k >= n:
-                a.axis("off")
-                continue
-            m, tc = maps[k], times["time_after_contact_us"][k]
-            span = max(m["y_mm"]) - min(m["y_mm"])
-            size = (width * ratio * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
-            sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
-                           linewidths=0, rasterized=True)
-            a.set_aspect("equal")
-            a.set_title(f"t = {tc:.1f} us after contact", fontsize=9)
-            a.tick_params(labelsize=7)
-        for a in axes[:, 0]:
-            a.set_ylabel("y (mm)", fontsize=8)
-        for a in axes[-1, :]:
-            a.set_xlabel("x (mm)", fontsize=8)
-        fig.colorbar(sc, ax=axes.ravel().tolist(), label=label, shrink=0.9, fraction=0.04, pad=0.01)
-        fig.savefig(out / name, dpi=90)
-        plt.close(fig)
+            ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True))]
+    # Every figure is independent: draw them on every core (the run that wrote them is over).
+    with ProcessPoolExecutor(max_workers=max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
+        for done in [pool.submit(f, *args) for f, args in jobs]:
+            done.result()  # a figure that failed stops the script with its error
