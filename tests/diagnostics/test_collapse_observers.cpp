@@ -194,6 +194,40 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
     }
 }
 
+TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads", "[diagnostics][threads]") {
+    // 4 x 4 particles per cell (7,000 and more: the centres are then tried in parallel), with
+    // pseudo-random temperatures that tie often, then uniform ones (no centre skipped).
+    gimlet::scene::scene<S, hmx> sc(grid());
+    const auto mat = gimlet::materials::make_hmx();
+    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
+    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
+                mat, S::vector::Zero(), 4, "lower");
+    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), 4, "upper");
+    std::vector<solver> runs;
+    for (const int threads : {1, 2, 3}) {
+        gimlet::solver_options<S> opt;
+        opt.threads = threads;
+        runs.emplace_back(sc, opt);
+    }
+    REQUIRE(runs[0].particles().size() >= 4096);
+    for (const bool uniform : {false, true}) {
+        std::uint64_t state = 777;
+        for (std::size_t i = 0; i < runs[0].particles().size(); ++i) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double t = uniform ? 345.06126582478936 : 300.0 + double((state >> 40) % 5);
+            for (auto& run : runs) run.particles()[i].get<temperature>() = t;
+        }
+        const auto one = gimlet::diagnostics::hot_spot(runs[0], 0.75e-3);
+        for (std::size_t k = 1; k < runs.size(); ++k) {
+            const auto r = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3);
+            INFO("uniform " << uniform << ", threads " << k + 1);
+            CHECK(r.temperature == one.temperature);
+            CHECK(r.centre == one.centre);
+            CHECK(r.particles == one.particles);
+        }
+    }
+}
+
 TEST_CASE("hot_material: the mass and current area hotter than each temperature", "[diagnostics]") {
     auto sol = two_blocks(2, 2);
     auto& ps = sol.particles();

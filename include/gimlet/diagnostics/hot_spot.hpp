@@ -5,6 +5,7 @@
 /// temperature depends on the resolution and on particle noise; a mean over a fixed physical
 /// size converges as the cell shrinks, so resolution studies can compare it.
 
+#include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
 
@@ -128,18 +129,42 @@ template <class Solver>
     std::size_t unused = 0;
     const double floor = disc(hottest, unused);
     const double margin = 1e-9 * std::abs(floor);
-    r.temperature = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-        double bound = -std::numeric_limits<double>::infinity();
-        around(i, [&](std::size_t k) { bound = std::max(bound, bin_max[k]); });
-        if (bound < floor - margin) continue;
-        std::size_t count = 0;
-        const double mean = disc(i, count);
-        if (mean > r.temperature) {
-            r.temperature = mean;
-            r.centre = x[i];
-            r.particles = count;
+    // The centres are tried in parallel on the solver's threads (where the temperatures are
+    // nearly uniform, before a hot spot forms, few are skipped). The hottest disc, ties to the
+    // lowest index, is a maximum in a total order, so it does not depend on the thread count.
+    struct best_disc {
+        double mean = -std::numeric_limits<double>::infinity();
+        std::size_t index = 0, count = 0;
+        bool found = false;
+        [[nodiscard]] bool beaten_by(double m, std::size_t i) const {
+            return !found ? m > mean : (m > mean || (m == mean && i < index));
         }
+    };
+    best_disc best;
+    int threads = detail::default_threads();
+    if constexpr (requires { s.options().threads; })
+        if (s.options().threads > 0) threads = s.options().threads;
+    const auto count_n = static_cast<std::ptrdiff_t>(n);
+    GIMLET_OMP(parallel num_threads(threads) if (count_n >= 4096))
+    {
+        best_disc local;
+        GIMLET_OMP(for schedule(dynamic, 256) nowait)
+        for (std::ptrdiff_t k = 0; k < count_n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            double bound = -std::numeric_limits<double>::infinity();
+            around(i, [&](std::size_t b) { bound = std::max(bound, bin_max[b]); });
+            if (bound < floor - margin) continue;
+            std::size_t count = 0;
+            const double mean = disc(i, count);
+            if (local.beaten_by(mean, i)) local = {mean, i, count, true};
+        }
+        GIMLET_OMP(critical(gimlet_hot_spot))
+        if (local.found && best.beaten_by(local.mean, local.index)) best = local;
+    }
+    r.temperature = best.mean;
+    if (best.found) {
+        r.centre = x[best.index];
+        r.particles = best.count;
     }
     return r;
 }
