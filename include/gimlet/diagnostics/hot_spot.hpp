@@ -144,6 +144,7 @@ template <class Solver>
     int threads = detail::default_threads();
     if constexpr (requires { s.options().threads; })
         if (s.options().threads > 0) threads = s.options().threads;
+    (void)threads;  // read only by the OpenMP pragma
     const auto count_n = static_cast<std::ptrdiff_t>(n);
     GIMLET_OMP(parallel num_threads(threads) if (count_n >= 4096))
     {
