@@ -124,9 +124,10 @@ struct self_contact {
         const auto& body = ps.template column<fields::body>();
         const auto& normal0 = ps.template column<fields::surface_normal>();
         const auto& F = ps.template column<fields::deformation_gradient>();
-        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|.
+        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle writes its
+        // own entries, so the slabs' threads share nothing here.
         current_.resize(n * std::size_t(dim));
-        for (std::size_t i = 0; i < n; ++i) {
+        view.for_each_particle_by_slab([&](std::size_t i) {
             vector c = vector::Zero();
             const real a = normal0[i].norm();
             if (a > 0) {
@@ -136,7 +137,7 @@ struct self_contact {
                 c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
             }
             for (int d = 0; d < dim; ++d) current_[i * std::size_t(dim) + std::size_t(d)] = double(c[d]);
-        }
+        });
         auto current = [&](std::size_t i) {
             vector c;
             for (int d = 0; d < dim; ++d) c[d] = real(current_[i * std::size_t(dim) + std::size_t(d)]);
