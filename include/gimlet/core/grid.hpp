@@ -236,6 +236,14 @@ public:
         std::fill(momentum.begin(), momentum.end(), vector::Zero());
         std::fill(force.begin(), force.end(), vector::Zero());
     }
+    /// clear() of entry e alone (0 <= e < entries()), for a caller that splits the entries
+    /// between threads.
+    void clear_entry(std::size_t e) noexcept {
+        stopped_[e] = 0;
+        mass[e] = real(0);
+        momentum[e] = vector::Zero();
+        force[e] = vector::Zero();
+    }
 
     /// Impose the wall conditions on nodal velocities (every field): on a slip or fixed axis, nodes at
     /// and beyond the boundary (k <= 0 or k >= N) lose the normal (slip) or every (fixed)

@@ -331,7 +331,7 @@ private:
         }
         dt_ = dt;
         if (options_.volumetric_average) average_mean_stress();
-        grid_.clear();
+        clear_grid();
     }
 
     // What MUSL and USL do first: P2G of mass, momentum and forces, the grid momentum update,
@@ -448,6 +448,8 @@ private:
     void scatter();
     void map_forces();
     void nodal_velocity(std::vector<vector>& out);
+    void clear_grid();
+    void fill_entries(std::vector<vector>& out, const vector& value);
     void update_grid_momentum(real dt, bool with_old_velocity);
     void grid_to_particles(real dt, bool remap);
 

@@ -23,7 +23,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::scatter() {
     const auto& m = particles_.template column<fields::mass>();
     const auto& v = particles_.template column<fields::velocity>();
     [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
-    if constexpr (multi_field) std::fill(mass_gradient.begin(), mass_gradient.end(), vector::Zero());
+    if constexpr (multi_field) fill_entries(mass_gradient, vector::Zero());
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
     for_each_particle_by_slab([&](std::size_t i) {
@@ -86,6 +86,22 @@ void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>&
         const auto i = static_cast<std::size_t>(k);
         out[i] = grid_.mass[i] > 0 ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
     }
+}
+
+// The nodal arrays are cleared every step; on a large grid that is memory-bound work a single
+// thread would do while the others wait, so it is split between the threads.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::clear_grid() {
+    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) grid_.clear_entry(static_cast<std::size_t>(k));
+}
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
+    const auto n = static_cast<std::ptrdiff_t>(out.size());
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = value;
 }
 
 // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), (mv)_i += dt f_i,
@@ -207,7 +223,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool rem
         }
     };
     if (remap) {
-        std::fill(grid_.momentum.begin(), grid_.momentum.end(), vector::Zero());
+        fill_entries(grid_.momentum, vector::Zero());
         for_each_particle_by_slab(update);
     } else {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
