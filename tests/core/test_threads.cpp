@@ -39,10 +39,10 @@ void check_same(const Solver& one, const Solver& two) {
 }
 
 template <class Contact = gimlet::contact::single_field>
-auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0) {
+auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0, double room = 0) {
     gimlet::grid_spec<S> gs;
-    gs.lower = S::vector::Zero();
-    gs.upper = S::vector::Ones();
+    gs.lower = -room * S::vector::Ones();
+    gs.upper = (1 + room) * S::vector::Ones();
     gs.cell = 0.0125;  // 6656 particles
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
     gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
@@ -88,6 +88,15 @@ auto blocks(int threads, gimlet::update_scheme scheme, double pic_fraction = 0) 
 
 TEST_CASE("results do not depend on the thread count", "[core][threads]") {
     check_same(disks(1, gimlet::update_scheme::musl), disks(2, gimlet::update_scheme::musl));
+}
+
+// The node loops (clearing the nodal arrays, nodal velocities, the momentum update) go parallel
+// only on grids of 131,072 entries and more: the same disks with 2 units of empty grid on
+// every side (401 x 401 nodes, two fields: 321,602 entries).
+TEST_CASE("results do not depend on the thread count: a grid large enough for parallel node loops", "[core][threads]") {
+    using gimlet::contact::bardenhagen;
+    check_same(disks<bardenhagen>(1, gimlet::update_scheme::musl, 0, 2.0),
+               disks<bardenhagen>(2, gimlet::update_scheme::musl, 0, 2.0));
 }
 
 TEST_CASE("results do not depend on the thread count: USL, USF", "[core][threads]") {
