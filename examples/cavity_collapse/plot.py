@@ -170,13 +170,14 @@ if __name__ == "__main__":
     spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
     snaps = out / "snapshots"
     times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
-    jobs = [(plot_series, (out,)), (plot_hot_material, (out,))]
-    jobs += [(plot_map, (out, spacing, i, tc))
-             for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))]
+    jobs = []  # the longest first, so that no core is left with one at the end
     if len(times.get("index", [])) >= 2:
         jobs += [(plot_maps, (out, spacing, times) + panel) for panel in (
             ("pressure_MPa", "pressure (MPa)", "viridis", None, "maps_pressure.png", False),
             ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True))]
+    jobs += [(plot_map, (out, spacing, i, tc))
+             for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))]
+    jobs += [(plot_series, (out,)), (plot_hot_material, (out,))]
     # Every figure is independent: draw them on every core (the run that wrote them is over).
     with ProcessPoolExecutor(max_workers=max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
         for done in [pool.submit(f, *args) for f, args in jobs]:
