@@ -43,9 +43,18 @@ def read_map(path):
 
 
 def quantile_999(values):
-    """The value at rank int(0.999 (n - 1)) of the sorted values."""
+    """The value at rank int(0.999 (n - 1)) of the sorted finite values (None if there are none)."""
+    values = values[np.isfinite(values)]
+    if len(values) == 0:
+        return None
     k = int(0.999 * (len(values) - 1))
     return np.partition(values, k)[k]
+
+
+def extent(values):
+    """Largest minus smallest of the finite values (0 if there are none)."""
+    values = values[np.isfinite(values)]
+    return values.max() - values.min() if len(values) else 0.0
 
 
 def plot_series(out):
@@ -99,7 +108,7 @@ def plot_map(out, spacing, i, tc):
     m = read_map(out / "snapshots" / f"map_{int(i):04d}.csv")
     fig, ax = plt.subplots(1, 2, figsize=(8.0, 5.2), sharey=True)
     # Marker area (points^2) that tiles the particle spacing at this figure size.
-    span = m["y_mm"].max() - m["y_mm"].min()
+    span = extent(m["y_mm"])
     size = (4.2 * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
     for a, key, label, cmap, lo in ((ax[0], "pressure_MPa", "pressure (MPa)", "viridis", None),
                                     (ax[1], "temperature_K", "temperature (K)", "inferno", 300.0)):
@@ -128,7 +137,7 @@ def plot_maps(out, spacing, times, key, label, cmap, lo, name, upper_only):
     if upper_only:
         panels = [{k: col[m["body"] == 1] for k, col in m.items()} for m in panels]
     # Panel height over width, from the particles' extent.
-    ratio = max((m["y_mm"].max() - m["y_mm"].min()) / max(m["x_mm"].max() - m["x_mm"].min(), 1e-9) for m in panels)
+    ratio = max(extent(m["y_mm"]) / max(extent(m["x_mm"]), 1e-9) for m in panels)
     best = None
     for cols in range(1, n + 1):
         rows = math.ceil(n / cols)
@@ -147,7 +156,7 @@ def plot_maps(out, spacing, times, key, label, cmap, lo, name, upper_only):
             a.axis("off")
             continue
         m, tc = panels[k], times["time_after_contact_us"][k]
-        span = m["y_mm"].max() - m["y_mm"].min()
+        span = extent(m["y_mm"])
         size = (width * ratio * 72 * spacing / max(span, 1e-9)) ** 2 * 1.2
         sc = a.scatter(m["x_mm"], m["y_mm"], c=m[key], s=size, marker="s", cmap=cmap, vmin=lo, vmax=hi,
                        linewidths=0, rasterized=True)
@@ -178,7 +187,10 @@ if __name__ == "__main__":
     jobs += [(plot_map, (out, spacing, i, tc))
              for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))]
     jobs += [(plot_series, (out,)), (plot_hot_material, (out,))]
-    # Every figure is independent: draw them on every core (the run that wrote them is over).
-    with ProcessPoolExecutor(max_workers=max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
+    # Every figure is independent: draw them on every core this process may use (the run that
+    # wrote them is over). Every figure is attempted; if any failed, the first failure's error
+    # is raised at the end (exit status 1), after the others are written.
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    with ProcessPoolExecutor(max_workers=max(1, min(len(jobs), cores))) as pool:
         for done in [pool.submit(f, *args) for f, args in jobs]:
-            done.result()  # a figure that failed stops the script with its error
+            done.result()

@@ -194,9 +194,11 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
     }
 }
 
-TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads", "[diagnostics][threads]") {
+TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties to the lowest index", "[diagnostics][threads]") {
     // 4 x 4 particles per cell (7,000 and more: the centres are then tried in parallel), with
-    // pseudo-random temperatures that tie often, then uniform ones (no centre skipped).
+    // pseudo-random temperatures that tie often, then uniform ones (no centre skipped), then a
+    // power of two, where every disc's mean is exactly that temperature: all tie, and the disc
+    // around particle 0 must win.
     gimlet::scene::scene<S, hmx> sc(grid());
     const auto mat = gimlet::materials::make_hmx();
     using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
@@ -210,17 +212,21 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads", "[d
         runs.emplace_back(sc, opt);
     }
     REQUIRE(runs[0].particles().size() >= 4096);
-    for (const bool uniform : {false, true}) {
+    for (const int kind : {0, 1, 2}) {
         std::uint64_t state = 777;
         for (std::size_t i = 0; i < runs[0].particles().size(); ++i) {
             state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double t = uniform ? 345.06126582478936 : 300.0 + double((state >> 40) % 5);
+            const double t = kind == 0 ? 300.0 + double((state >> 40) % 5) : kind == 1 ? 345.06126582478936 : 512.0;
             for (auto& run : runs) run.particles()[i].get<temperature>() = t;
         }
         const auto one = gimlet::diagnostics::hot_spot(runs[0], 0.75e-3);
+        if (kind == 2) {
+            CHECK(one.temperature == 512.0);
+            CHECK(one.centre == runs[0].particles()[0].get<position>());
+        }
         for (std::size_t k = 1; k < runs.size(); ++k) {
             const auto r = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3);
-            INFO("uniform " << uniform << ", threads " << k + 1);
+            INFO("temperatures " << kind << ", threads " << k + 1);
             CHECK(r.temperature == one.temperature);
             CHECK(r.centre == one.centre);
             CHECK(r.particles == one.particles);
