@@ -9,6 +9,7 @@ available, PLOT_DIR/perf_pareto.png (error against time) and PLOT_DIR/perf_scali
 import csv
 import math
 import os
+import statistics
 import sys
 
 
@@ -115,6 +116,22 @@ def main(res, plots):
         md.append(table(["scheme", "cell (mm)", "particles", "plateau σ_yy error", "shock speed error", "time (s)"],
                         [[r["scheme"], r["resolution"], r["particles"], f'{num(r["error"]):.2%}',
                           f'{num(r["error2"]):.2%}', f'{num(r["seconds"]):.2f}'] for r in imp]))
+    outs = rows(os.path.join(res, "outputs.csv"))
+    if outs:
+        md.append("\n### The flagship's outputs (the quickstart's run, 2 threads, whole process)\n")
+        med = {}
+        for kind in ("off", "written", "default"):
+            w = sorted(num(r["wall_s"]) for r in outs if r["outputs"] == kind)
+            if w:
+                med[kind] = (statistics.median(w), w[0], w[-1], len(w))
+        what = {"off": "outputs off (no snapshots, a sample per 100 µs, no figures)",
+                "written": "samples every 0.1 µs and nine snapshots, no figures",
+                "default": "the default outputs: the same with the figures"}
+        body = []
+        for kind, (m, lo, hi, n) in med.items():
+            rel = f"{m / med['off'][0] - 1:+.1%}" if "off" in med else ""
+            body.append([what[kind], f"{m:.2f}", f"{lo:.2f}–{hi:.2f}", n, rel])
+        md.append(table(["outputs", "median wall (s)", "range (s)", "runs", "against outputs off"], body))
     with open(os.path.join(res, "tables.md"), "w") as f:
         f.write("\n".join(md))
 

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Build the benchmarks (`bench` preset) and run them all: throughput (the reference scene and
-# the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect, and
-# accuracy against time. CSVs and Markdown tables go to results/bench/, plots to
+# the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect,
+# accuracy against time, and the flagship's outputs against outputs off. CSVs and Markdown tables go to results/bench/, plots to
 # docs/perf_*.png (drawn with Debian's /usr/bin/python3, which has matplotlib).
 #
-#   scripts/bench.sh            the full run (about 20-30 minutes on an idle 2-core machine)
+#   scripts/bench.sh            the full run (about 25-35 minutes on an idle 2-core machine)
 #   scripts/bench.sh --quick    a smoke run of every benchmark (a minute)
 #
 # The machine's load average is recorded before and after each benchmark: timings on a busy
@@ -19,7 +19,8 @@ quick=0
 
 build="${GIMLET_BENCH_BUILD:-build/bench}"
 out="${GIMLET_BENCH_OUTPUT:-results/bench}"
-cmake --preset bench -B "$build" >/dev/null
+# The flagship too (and no other example): its outputs are timed against outputs off below.
+cmake --preset bench -B "$build" -DGIMLET_BUILD_EXAMPLES=ON -DGIMLET_EXAMPLES=cavity_collapse >/dev/null
 cmake --build "$build" -j2
 mkdir -p "$out"
 bin="$build/benchmarks"
@@ -95,6 +96,40 @@ load "accuracy end"
 
 python=python3
 [ -x /usr/bin/python3 ] && python=/usr/bin/python3
+
+# The flagship's outputs (issue 19: within 15 % of the same run with outputs off): the
+# quickstart's run (scripts/quickstart.sh's flags) on 2 threads, whole process, with
+#   off       no snapshots, one sample per 100 us (the least the flags allow), no figures;
+#   written   the quickstart's samples (every 0.1 us) and nine snapshots, no figures;
+#   default   the same with the figures (plot.py), as a user runs it.
+# The three are interleaved, repeated, and the median of each is compared.
+flagship="$build/examples/cavity_collapse/cavity_collapse"
+if [ "$quick" = 1 ]; then
+    fl_args=(--velocity 300 --radius 10 --cell 2 --end-us 40); fl_repeats=1
+else
+    fl_args=(--velocity 300 --radius 10 --cell 0.5 --end-us 40); fl_repeats=3
+fi
+fl_out=$(mktemp -d)
+load "outputs start"
+{
+    echo "outputs,repeat,wall_s"
+    for r in $(seq 1 "$fl_repeats"); do
+        for kind in off written default; do
+            case "$kind" in
+                off) extra=(--snapshot-every-us 0 --sample-every-us 100 --no-figures) ;;
+                written) extra=(--snapshot-every-us 0 --snapshots-after-contact-us 4,6,8,12,14,20,24,25,30 --no-figures) ;;
+                default) extra=(--snapshot-every-us 0 --snapshots-after-contact-us 4,6,8,12,14,20,24,25,30) ;;
+            esac
+            rm -rf "$fl_out/run"
+            t0=$(date +%s.%N)
+            "$flagship" "${fl_args[@]}" "${extra[@]}" --threads 2 --quiet \
+                --output "$fl_out/run" >/dev/null
+            echo "$kind,$r,$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')"
+        done
+    done
+} | tee "$out/outputs.csv"
+rm -rf "$fl_out"
+load "outputs end"
 plots="docs"
 [ "$quick" = 1 ] && plots="$out"
 "$python" benchmarks/report.py "$out" "$plots"
