@@ -10,6 +10,7 @@
 #include "gimlet/contact/concepts.hpp"
 #include "gimlet/contact/node.hpp"
 #include "gimlet/core/describe.hpp"
+#include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/grid.hpp"
 #include "gimlet/multi_field/correct.hpp"
@@ -63,44 +64,91 @@ public:
     // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
     // each node of its stencil in turn, the index of the field entry its mass went to there
     // (field * nodes + node).
+    //
+    // The pass over every node runs in blocks of nodes, on `threads` threads where `parallel`:
+    // each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
+    // order, and each block fills its part. The arrays are those of one pass in node order,
+    // whatever the thread count.
     template <class Stencils, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
-                           std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle) {
+                           std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
+                           int threads = 1, bool parallel = false) {
         const std::size_t nodes = grid.size(), fields_n = grid.field_count();
-        shared_index_.assign(nodes, -1);
-        shared_.clear(), shared_field_.clear(), shared_owner_.clear(), shared_normal_.clear(), shared_pair_normal_.clear();
-        for (std::size_t node = 0; node < nodes; ++node) {
-            const std::size_t first = shared_field_.size();
+        constexpr std::size_t block = 4096;
+        const std::size_t blocks = (nodes + block - 1) / block;
+        constexpr std::size_t max_k = contact::node_view<S>::max_fields;
+        shared_index_.resize(nodes);
+        block_count_.assign(blocks, {});
+        // The fields above the cut-off at a node, in field order (at most max_k + 1 asked for).
+        auto fields_at = [&](std::size_t node, std::uint32_t* out) {
+            std::size_t k = 0;
             for (std::size_t f = 0; f < fields_n; ++f)
-                if (grid.mass[f * nodes + node] > cutoff) shared_field_.push_back(static_cast<std::uint32_t>(f));
-            const std::size_t k = shared_field_.size() - first;
-            if (k < 2) {
-                shared_field_.resize(first);
-                continue;
+                if (grid.mass[f * nodes + node] > cutoff) {
+                    if (k <= max_k) out[k] = static_cast<std::uint32_t>(f);
+                    ++k;
+                }
+            return k;
+        };
+        const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+        (void)threads, (void)parallel;  // read only by the OpenMP pragmas
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
+            block_counts& c = block_count_[std::size_t(b)];
+            std::uint32_t ids[max_k + 1];
+            for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
+                const std::size_t k = fields_at(node, ids);
+                shared_index_[node] = k < 2 ? -1 : 0;
+                if (k < 2) continue;
+                if (k > max_k) {
+                    c.too_many = std::min(c.too_many, node);
+                    continue;
+                }
+                ++c.nodes, c.fields += k, c.pairs += k * k;
             }
-            if (k > contact::node_view<S>::max_fields) {
-                std::string ids;
-                for (std::size_t j = 0; j < k; ++j) ids += (j ? ", " : "") + std::to_string(shared_field_[first + j]);
+        }
+        block_counts total{};
+        for (block_counts& c : block_count_) {
+            if (c.too_many < nodes) {  // the lowest such node, as a serial pass would stop at
+                std::uint32_t ids[max_k + 1];
+                const std::size_t k = fields_at(c.too_many, ids);
+                std::string list;
+                for (std::size_t f = 0; f < fields_n; ++f)
+                    if (grid.mass[f * nodes + c.too_many] > cutoff) list += (list.empty() ? "" : ", ") + std::to_string(f);
                 throw numerical_error("gimlet: step " + std::to_string(step) + " (t = " +
                                       gimlet::detail::to_text(time) + " s): grid node at " +
-                                      gimlet::detail::format_position(grid.node_position(node)) + " is shared by " + std::to_string(k) +
-                                      " velocity fields (" + ids + "); multi-field contact handles at most " +
-                                      std::to_string(contact::node_view<S>::max_fields) + " at one node");
+                                      gimlet::detail::format_position(grid.node_position(c.too_many)) + " is shared by " +
+                                      std::to_string(k) + " velocity fields (" + list + "); multi-field contact handles at most " +
+                                      std::to_string(max_k) + " at one node");
             }
-            shared_index_[node] = static_cast<std::ptrdiff_t>(shared_.size());
-            shared_.push_back({node, first, k, shared_pair_normal_.size()});
-            for (std::size_t j = 0; j < k; ++j) {
-                shared_owner_.push_back(static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body));
-                const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
-                const real len = g.norm();
-                shared_normal_.push_back(len > real(0) ? vector(g / len) : vector::Zero());
+            const block_counts start{total.nodes, total.fields, total.pairs, nodes};
+            total.nodes += c.nodes, total.fields += c.fields, total.pairs += c.pairs;
+            c = start;  // the block's offsets from here on
+        }
+        shared_.resize(total.nodes), shared_field_.resize(total.fields), shared_owner_.resize(total.fields);
+        shared_normal_.resize(total.fields), shared_pair_normal_.resize(total.pairs);
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
+            block_counts at = block_count_[std::size_t(b)];
+            for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
+                if (shared_index_[node] < 0) continue;
+                const std::size_t first = at.fields;
+                const std::size_t k = fields_at(node, shared_field_.data() + first);
+                shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
+                shared_[at.nodes] = {node, first, k, at.pairs};
+                for (std::size_t j = 0; j < k; ++j) {
+                    shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
+                    const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
+                    const real len = g.norm();
+                    shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+                }
+                // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
+                for (std::size_t a = 0; a < k; ++a)
+                    for (std::size_t b2 = 0; b2 < k; ++b2)
+                        shared_pair_normal_[at.pairs + a * k + b2] =
+                            a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2])
+                                    : vector::Zero();
+                ++at.nodes, at.fields += k, at.pairs += k * k;
             }
-            // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
-            for (std::size_t a = 0; a < k; ++a)
-                for (std::size_t b = 0; b < k; ++b)
-                    shared_pair_normal_.push_back(
-                        a != b ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b])
-                               : vector::Zero());
         }
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));
@@ -262,6 +310,12 @@ private:
     std::vector<vector> mass_gradient_;
     std::vector<std::ptrdiff_t> shared_index_;
     std::vector<shared_node> shared_;
+    // Per block of nodes in find_shared_nodes: its shared nodes, fields and pairs (then its
+    // offsets), and its first node shared by more fields than a node view holds.
+    struct block_counts {
+        std::size_t nodes = 0, fields = 0, pairs = 0, too_many = std::numeric_limits<std::size_t>::max();
+    };
+    std::vector<block_counts> block_count_;
     std::vector<std::uint32_t> shared_field_, shared_owner_;
     std::vector<vector> shared_normal_, shared_pair_normal_;
     std::vector<real> shared_reach_;

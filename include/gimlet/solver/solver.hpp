@@ -469,7 +469,8 @@ private:
     void find_shared_nodes() {
         exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
                                     [&](std::size_t i) { return entries(i); },
-                                    [&](auto&& f) { for_each_particle_by_slab(f); });
+                                    [&](auto&& f) { for_each_particle_by_slab(f); }, threads(),
+                                    std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
     }
 
     // What a partition's hooks see (multi_field::partition_view).
