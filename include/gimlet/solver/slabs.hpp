@@ -46,15 +46,41 @@ public:
     /// Each particle's slab, to be permuted with the particles.
     [[nodiscard]] std::vector<std::uint32_t>& slab_of() noexcept { return slab_of_; }
 
-    /// Particle indices grouped by slab, increasing within each (a stable counting sort).
-    void bucket() {
-        const std::size_t n = slab_of_.size();
-        slab_start_.assign(std::size_t(slabs_) + 1, 0);
-        for (std::size_t i = 0; i < n; ++i) ++slab_start_[slab_of_[i] + 1];
-        for (std::size_t s = 0; s < std::size_t(slabs_); ++s) slab_start_[s + 1] += slab_start_[s];
-        slab_cursor_.assign(slab_start_.begin(), slab_start_.end() - 1);
+    /// Particle indices grouped by slab, increasing within each (a stable counting sort), on
+    /// `threads` threads if `parallel`: each block of particles counts its slabs, takes its
+    /// offsets within each slab in block order and places its particles, so the order is that
+    /// of the serial sort whatever the thread count.
+    void bucket([[maybe_unused]] bool parallel = false, [[maybe_unused]] int threads = 1) {
+        // A block per 4096 particles, at most 64 blocks (the offsets are a serial pass over
+        // blocks x slabs); the order does not depend on the blocks.
+        const std::size_t n = slab_of_.size(), slabs = std::size_t(slabs_);
+        const std::size_t blocks = std::min<std::size_t>((n + 4095) / 4096, 64);
+        const std::size_t block = blocks > 0 ? (n + blocks - 1) / blocks : 1;
+        const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+        block_cursor_.assign(blocks * slabs, 0);
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && blocks_n > 1))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
+            std::size_t* count = block_cursor_.data() + std::size_t(b) * slabs;
+            for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i) ++count[slab_of_[i]];
+        }
+        slab_start_.assign(slabs + 1, 0);
+        std::size_t at = 0;
+        for (std::size_t s = 0; s < slabs; ++s) {
+            slab_start_[s] = at;
+            for (std::size_t b = 0; b < blocks; ++b) {
+                const std::size_t c = block_cursor_[b * slabs + s];
+                block_cursor_[b * slabs + s] = at;
+                at += c;
+            }
+        }
+        slab_start_[slabs] = at;
         slab_particles_.resize(n);
-        for (std::size_t i = 0; i < n; ++i) slab_particles_[slab_cursor_[slab_of_[i]]++] = i;
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && blocks_n > 1))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
+            std::size_t* cursor = block_cursor_.data() + std::size_t(b) * slabs;
+            for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i)
+                slab_particles_[cursor[slab_of_[i]]++] = i;
+        }
     }
 
     /// f(i) for every particle, slab by slab and colour by colour, on `threads` threads if
@@ -76,7 +102,8 @@ public:
 private:
     int slabs_ = 1;
     std::vector<std::uint32_t> slab_of_;  // each particle's slab
-    std::vector<std::size_t> slab_start_, slab_cursor_, slab_particles_;
+    std::vector<std::size_t> slab_start_, slab_particles_;
+    std::vector<std::size_t> block_cursor_;  // per block of particles and slab: a count, then a cursor
     std::array<std::vector<int>, 3> colour_slabs_;  // the slabs of each colour
 };
 

@@ -318,7 +318,7 @@ private:
         lap(timings_.particle_to_grid);
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
-        slabs_.bucket();
+        slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
         // Asked of any partition that has it, whatever its fields_per_body; the view is a const
         // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
         if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); }) {
