@@ -61,14 +61,17 @@ concept Partition = requires {
 /// in an order that lets f add into per-node arrays without races at the nodes of particle i's
 /// own stencil (not at other nodes): every such node sums its particles' contributions in an
 /// order fixed by the grid and the particle order, whatever the thread count (so results stay
-/// thread-independent). f must not throw.
-template <class Store, class Stencils, class Grid, class BySlab>
+/// thread-independent). `for_each_index(count, f)` calls f(k) for every k in [0, count), split
+/// between the solver's threads when count is large (a grid's entries): for per-node work
+/// where f(k) writes only entry k. f must not throw.
+template <class Store, class Stencils, class Grid, class BySlab, class ByIndex>
 struct partition_view {
     Store& particles;
     const Stencils& stencils;
     const Grid& grid;
     std::size_t bodies;
     BySlab for_each_particle_by_slab;
+    ByIndex for_each_index;
 };
 
 /// One velocity field per body (Bardenhagen et al. 2000): the default. A body never touches

@@ -11,6 +11,7 @@
 #include "gimlet/multi_field/partition.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -144,8 +145,10 @@ struct self_contact {
             return c;
         };
         constexpr double none = -1;
-        best_.assign(entries, none);
-        best_particle_.assign(entries, std::numeric_limits<std::size_t>::max());
+        best_.resize(entries), best_particle_.resize(entries);
+        view.for_each_index(entries, [&](std::size_t e) {
+            best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
+        });
         // Pass 1: the reference direction of each node and body (largest S m |n|, ties to the
         // lower particle index, so the choice does not depend on the order of the sum).
         view.for_each_particle_by_slab([&](std::size_t i) {
@@ -160,8 +163,8 @@ struct self_contact {
             });
         });
         const double inf = std::numeric_limits<double>::infinity();
-        front_along_.assign(entries, -inf);
-        front_against_.assign(entries, inf);
+        front_along_.resize(entries), front_against_.resize(entries);
+        view.for_each_index(entries, [&](std::size_t e) { front_along_[e] = -inf, front_against_[e] = inf; });
         // Pass 2: the fronts of the particles facing along e and against it.
         view.for_each_particle_by_slab([&](std::size_t i) {
             const real a = normal0[i].norm();
@@ -182,11 +185,13 @@ struct self_contact {
         // A node is a candidate where both fronts exist and the surface facing against e lies
         // beyond the one facing along it: a gap between two faces, not the two faces of a
         // ligament.
-        split_.assign(entries, 0);
-        bool any = false;
-        for (std::size_t e = 0; e < entries; ++e)
-            if (front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e])
-                split_[e] = 1, any = true;
+        split_.resize(entries);
+        std::atomic<bool> candidates{false};
+        view.for_each_index(entries, [&](std::size_t e) {
+            split_[e] = front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e];
+            if (split_[e]) candidates.store(true, std::memory_order_relaxed);
+        });
+        const bool any = candidates.load();
         // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in
         // the middle half between the fronts means material there, as just beyond the tip of a
         // slot, where both faces reach a node of the intact material ahead: no split.
@@ -204,18 +209,21 @@ struct self_contact {
                 });
             });
         }
-        mid_.assign(entries, 0.0);
-        reference_.assign(entries * std::size_t(dim), 0.0);
-        for (std::size_t e = 0; e < entries; ++e) {
+        mid_.resize(entries), reference_.resize(entries * std::size_t(dim));
+        std::atomic<std::size_t> split_count{0};
+        view.for_each_index(entries, [&](std::size_t e) {
+            mid_[e] = 0.0;
+            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = 0.0;
             if (split_[e] != 1) {
                 split_[e] = 0;
-                continue;
+                return;
             }
-            ++split_nodes_;
+            split_count.fetch_add(1, std::memory_order_relaxed);
             mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
             const vector ref = current(best_particle_[e]).normalized();
             for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
-        }
+        });
+        split_nodes_ = split_count.load();
         nodes_ = nodes;
         grid_length_.assign(std::size_t(dim), 0.0);
         for (int d = 0; d < dim; ++d) {

@@ -479,11 +479,21 @@ private:
         template <class F>
         void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
     };
+    struct index_caller {
+        solver* self;
+        template <class F>
+        void operator()(std::size_t count, F&& f) const {
+            const auto n = static_cast<std::ptrdiff_t>(count);
+            GIMLET_OMP(parallel for schedule(static) num_threads(self->threads()) if (n >= node_parallel_threshold))
+            for (std::ptrdiff_t k = 0; k < n; ++k) f(static_cast<std::size_t>(k));
+        }
+    };
     template <class Store>
-    using partition_view_type = multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller>;
+    using partition_view_type =
+        multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller, index_caller>;
     template <class Store>
     [[nodiscard]] partition_view_type<Store> partition_view() {
-        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}};
+        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}, index_caller{this}};
     }
 
     // The partition's side of every particle at every node of its stencil, from the
