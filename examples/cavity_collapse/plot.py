@@ -51,12 +51,6 @@ def quantile_999(values):
     return np.partition(values, k)[k]
 
 
-def extent(values):
-    """Largest minus smallest of the finite values (0 if there are none)."""
-    values = values[np.isfinite(values)]
-    return values.max() - values.min() if len(values) else 0.0
-
-
 def raster(m, key, spacing):
     """The particles of map m painted as an image: each particle a square of side 1.05 x its
     spacing in the colour of m[key], later particles over earlier ones (a scatter's order), on
@@ -135,14 +129,28 @@ def plot_hot_material(out):
         fig.savefig(out / "hot_material.png", dpi=110)
         plt.close(fig)
 
+# The many-panel figures: the whole pair of blocks in pressure, the upper block (body 1) in
+# temperature (the paper shows only that one). Each: the map's column, upper block only, the
+# colour bar's label, colour map and lower limit, the file.
+PANELS = (("pressure_MPa", False, "pressure (MPa)", "viridis", None, "maps_pressure.png"),
+          ("temperature_K", True, "temperature (K)", "inferno", 300.0, "maps_temperature.png"))
+
+
 def plot_map(out, spacing, i, tc):
-    """map_NNNN.png: pressure and temperature of every particle at one snapshot."""
+    """map_NNNN.png: pressure and temperature of every particle at one snapshot. Returns this
+    snapshot's panels of the many-panel figures, one per PANELS entry: (image and extent, or
+    None; the values shown), so that each map is read and painted once."""
     m = read_map(out / "snapshots" / f"map_{int(i):04d}.csv")
+    panels = []
+    for key, upper_only, *_ in PANELS:
+        part = {k: col[m["body"] == 1] for k, col in m.items()} if upper_only else m
+        panels.append((raster(part, key, spacing), part[key]))
+    whole = {key: image for (key, upper_only, *_), (image, _) in zip(PANELS, panels) if not upper_only}
     fig, ax = plt.subplots(1, 2, figsize=(8.0, 5.2), sharey=True)
     for a, key, label, cmap, lo in ((ax[0], "pressure_MPa", "pressure (MPa)", "viridis", None),
                                     (ax[1], "temperature_K", "temperature (K)", "inferno", 300.0)):
         hi = quantile_999(m[key])  # a few extreme particles would wash out the map
-        drawn = raster(m, key, spacing)
+        drawn = whole[key] if key in whole else raster(m, key, spacing)
         if drawn is not None:
             sc = a.imshow(drawn[0], origin="lower", extent=drawn[1], cmap=cmap, vmin=lo, vmax=hi)
             fig.colorbar(sc, ax=a, label=label, shrink=0.8)
@@ -153,19 +161,17 @@ def plot_map(out, spacing, i, tc):
     fig.tight_layout()
     fig.savefig(out / f"map_{int(i):04d}.png", dpi=100)
     plt.close(fig)
+    return panels
 
 
-# All snapshots in one figure per quantity, like the paper's snapshot figures: the whole pair of
-# blocks in pressure, the upper block in temperature (the paper shows only that one). The panels
-# form a grid whose shape keeps the figure near 4:3 with few empty panels, each titled with its
-# time, and share one colour scale and one colour bar.
-def plot_maps(out, spacing, times, key, label, cmap, lo, name, upper_only):
-    """maps_pressure.png / maps_temperature.png: every snapshot of one quantity."""
+# All snapshots in one figure per quantity, like the paper's snapshot figures (PANELS says
+# which particles). The panels form a grid whose shape keeps the figure near 4:3 with few empty
+# panels, each titled with its time, and share one colour scale and one colour bar.
+def plot_maps(out, times, panels, label, cmap, lo, name):
+    """maps_pressure.png / maps_temperature.png: every snapshot of one quantity, from the
+    snapshots' panels as plot_map returns them."""
     n = len(times["index"])
-    panels = [read_map(out / "snapshots" / f"map_{int(i):04d}.csv") for i in times["index"]]
-    if upper_only:
-        panels = [{k: col[m["body"] == 1] for k, col in m.items()} for m in panels]
-    drawn = [raster(m, key, spacing) for m in panels]
+    drawn = [image for image, _ in panels]
     shown = [d[1] for d in drawn if d is not None]
     if not shown:
         return
@@ -190,7 +196,7 @@ def plot_maps(out, spacing, times, key, label, cmap, lo, name, upper_only):
     fig, axes = plt.subplots(rows, cols, figsize=(fig_w, fig_h), squeeze=False, sharex=True, sharey=True)
     fig.subplots_adjust(left=left / fig_w, right=1 - right / fig_w, bottom=bottom / fig_h,
                         top=1 - (top + title) / fig_h, wspace=gap / width, hspace=title / height)
-    hi = quantile_999(np.concatenate([m[key] for m in panels]))
+    hi = quantile_999(np.concatenate([values for _, values in panels]))
     sc = None
     for k, a in enumerate(axes.ravel()):
         if k >= n:
@@ -222,18 +228,31 @@ if __name__ == "__main__":
     spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
     snaps = out / "snapshots"
     times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
-    jobs = []  # the longest first, so that no core is left with one at the end
-    if len(times.get("index", [])) >= 2:
-        jobs += [(plot_maps, (out, spacing, times) + panel) for panel in (
-            ("pressure_MPa", "pressure (MPa)", "viridis", None, "maps_pressure.png", False),
-            ("temperature_K", "temperature (K)", "inferno", 300.0, "maps_temperature.png", True))]
-    jobs += [(plot_map, (out, spacing, i, tc))
-             for i, tc in zip(times.get("index", []), times.get("time_after_contact_us", []))]
-    jobs += [(plot_series, (out,)), (plot_hot_material, (out,))]
-    # Every figure is independent: draw them on every core this process may use (the run that
-    # wrote them is over). Every figure is attempted; if any failed, the first failure's error
-    # is raised at the end (exit status 1), after the others are written.
+    # The run that wrote the data is over: draw the figures on every core this process may use.
+    # The snapshots' maps first (each read once; each returns its panels of the many-panel
+    # figures), then the two many-panel figures, which need every snapshot's panel. Every other
+    # figure is attempted; if any failed, the first failure's error is raised at the end (exit
+    # status 1), after the others are written.
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    with ProcessPoolExecutor(max_workers=max(1, min(len(jobs), cores))) as pool:
-        for done in [pool.submit(f, *args) for f, args in jobs]:
-            done.result()
+    snapshots = list(zip(times.get("index", []), times.get("time_after_contact_us", [])))
+    jobs = len(snapshots) + 2
+    errors = []
+    with ProcessPoolExecutor(max_workers=max(1, min(jobs, cores))) as pool:
+        maps = [pool.submit(plot_map, out, spacing, i, tc) for i, tc in snapshots]
+        rest = [pool.submit(plot_series, out), pool.submit(plot_hot_material, out)]
+        panels = []
+        for done in maps:
+            try:
+                panels.append(done.result())
+            except Exception as e:  # noqa: BLE001 (reported at the end)
+                errors.append(e)
+        if len(snapshots) >= 2 and not errors:  # they need every snapshot's panel
+            rest += [pool.submit(plot_maps, out, times, [p[k] for p in panels], label, cmap, lo, name)
+                     for k, (_, _, label, cmap, lo, name) in enumerate(PANELS)]
+        for done in rest:
+            try:
+                done.result()
+            except Exception as e:  # noqa: BLE001
+                errors.append(e)
+    if errors:
+        raise errors[0]
