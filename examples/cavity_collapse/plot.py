@@ -39,23 +39,41 @@ def read_map(path):
     with path.open() as f:
         names = f.readline().strip().split(",")
     data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    if data.size == 0:  # a map of no particles
+        return {k: np.empty(0) for k in names}
     return {k: data[:, j] for j, k in enumerate(names)}
 
 
-def quantile_999(values):
-    """The value at rank int(0.999 (n - 1)) of the sorted finite values (None if there are none)."""
+def quantile(values, q):
+    """The value at rank int(q (n - 1)) of the sorted finite values (None if there are none)."""
     values = values[np.isfinite(values)]
     if len(values) == 0:
         return None
-    k = int(0.999 * (len(values) - 1))
+    k = int(q * (len(values) - 1))
     return np.partition(values, k)[k]
+
+
+def colour_limits(values, lo):
+    """The colour scale of a map: from lo (the 0.1 % quantile where lo is None) to the 99.9 %
+    quantile of the finite values (a few extreme particles would wash out the map), never
+    below lo."""
+    hi = quantile(values, 0.999)
+    if lo is None:
+        lo = quantile(values, 0.001)
+    if lo is not None and hi is not None and hi < lo:
+        hi = lo
+    return lo, hi
 
 
 def raster(m, key, spacing):
     """The particles of map m painted as an image: each particle a square of side 1.05 x its
-    spacing in the colour of m[key], later particles over earlier ones (a scatter's order), on
-    pixels of half the spacing (at most 2000 a side), empty pixels NaN (left blank). Returns
-    (image, extent) for imshow(origin="lower"), or None if no particle has a finite place.
+    spacing in the colour of m[key], on pixels of half the spacing (about 2000 a side at most),
+    empty pixels NaN (left blank). Where two squares overlap, a pixel takes the colour of one of
+    them (the squares are painted offset by offset, each offset in the particles' order). A
+    particle far from the rest (flung off) would shrink the material to a few pixels: the image
+    covers the 0.1-99.9 % range of the places on each axis, widened by a twentieth of it and two
+    spacings, and leaves out what lies beyond. Returns (image, extent) for
+    imshow(origin="lower"), or None if no particle has a finite place.
 
     An image instead of a scatter of one marker per particle: drawing 54,000 markers a panel was
     most of the figures' time, and markers under a pixel wide left a moire of blank specks where
@@ -64,6 +82,10 @@ def raster(m, key, spacing):
     ok = np.isfinite(x) & np.isfinite(y)
     if not ok.any():
         return None
+    for c in (x, y):
+        lo, hi = quantile(c[ok], 0.001), quantile(c[ok], 0.999)
+        margin = 0.05 * (hi - lo) + 2 * spacing
+        ok &= (c >= lo - margin) & (c <= hi + margin)
     x, y, v = x[ok], y[ok], v[ok]
     half = 0.525 * spacing
     x0, y0 = x.min() - half, y.min() - half
@@ -139,7 +161,7 @@ PANELS = (("pressure_MPa", False, "pressure (MPa)", "viridis", None, "maps_press
 def plot_map(out, spacing, i, tc):
     """map_NNNN.png: pressure and temperature of every particle at one snapshot. Returns this
     snapshot's panels of the many-panel figures, one per PANELS entry: (image and extent, or
-    None; the values shown), so that each map is read and painted once."""
+    None; the values shown), so that each map is read once."""
     m = read_map(out / "snapshots" / f"map_{int(i):04d}.csv")
     panels = []
     for key, upper_only, *_ in PANELS:
@@ -149,10 +171,10 @@ def plot_map(out, spacing, i, tc):
     fig, ax = plt.subplots(1, 2, figsize=(8.0, 5.2), sharey=True)
     for a, key, label, cmap, lo in ((ax[0], "pressure_MPa", "pressure (MPa)", "viridis", None),
                                     (ax[1], "temperature_K", "temperature (K)", "inferno", 300.0)):
-        hi = quantile_999(m[key])  # a few extreme particles would wash out the map
+        vmin, vmax = colour_limits(m[key], lo)
         drawn = whole[key] if key in whole else raster(m, key, spacing)
         if drawn is not None:
-            sc = a.imshow(drawn[0], origin="lower", extent=drawn[1], cmap=cmap, vmin=lo, vmax=hi)
+            sc = a.imshow(drawn[0], origin="lower", extent=drawn[1], cmap=cmap, vmin=vmin, vmax=vmax)
             fig.colorbar(sc, ax=a, label=label, shrink=0.8)
         a.set_aspect("equal")
         a.set_xlabel("x (mm)")
@@ -196,14 +218,14 @@ def plot_maps(out, times, panels, label, cmap, lo, name):
     fig, axes = plt.subplots(rows, cols, figsize=(fig_w, fig_h), squeeze=False, sharex=True, sharey=True)
     fig.subplots_adjust(left=left / fig_w, right=1 - right / fig_w, bottom=bottom / fig_h,
                         top=1 - (top + title) / fig_h, wspace=gap / width, hspace=title / height)
-    hi = quantile_999(np.concatenate([values for _, values in panels]))
+    vmin, vmax = colour_limits(np.concatenate([values for _, values in panels]), lo)  # one scale
     sc = None
     for k, a in enumerate(axes.ravel()):
         if k >= n:
             a.axis("off")
             continue
         if drawn[k] is not None:
-            sc = a.imshow(drawn[k][0], origin="lower", extent=drawn[k][1], cmap=cmap, vmin=lo, vmax=hi)
+            sc = a.imshow(drawn[k][0], origin="lower", extent=drawn[k][1], cmap=cmap, vmin=vmin, vmax=vmax)
         a.set_aspect("equal")
         a.set_title(f"t = {times['time_after_contact_us'][k]:.1f} us after contact", fontsize=9)
         a.tick_params(labelsize=7)
