@@ -19,6 +19,7 @@
 # Peers not given are skipped. Two workers everywhere: 2 threads (gimlet, NairnMPM, CB-Geo),
 # 2 MPI ranks (Karamelo). OMP_WAIT_POLICY=passive for the OpenMP codes.
 set -euo pipefail
+export LC_ALL=C  # printf and awk read and write numbers with a decimal point
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 gimlet="" karamelo="" nairn="" cbgeo=""
@@ -26,6 +27,9 @@ runs=5 steps=1000 cbgeo_steps="" work=/tmp/gimlet-peers
 mpirun_cmd="mpirun -np 2"
 [ "$(id -u)" = 0 ] && mpirun_cmd="mpirun --allow-run-as-root --oversubscribe -np 2"
 while [ $# -gt 0 ]; do
+    case "$1" in --gimlet|--karamelo|--nairn|--cbgeo|--runs|--steps|--cbgeo-steps|--work|--mpirun)
+        [ $# -ge 2 ] || { echo "run.sh: $1 needs a value" >&2; exit 2; } ;;
+    esac
     case "$1" in
         --gimlet) gimlet=$(realpath "$2"); shift 2 ;;
         --karamelo) karamelo=$(realpath "$2"); shift 2 ;;
@@ -40,6 +44,9 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ -n "$gimlet" ] || { echo "run.sh: --gimlet PATH is required" >&2; exit 2; }
+for n in "$runs" "$steps" "${cbgeo_steps:-1}"; do
+    [[ "$n" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: --runs, --steps and --cbgeo-steps take a whole number >= 1 (got '$n')" >&2; exit 2; }
+done
 cbgeo_steps=${cbgeo_steps:-$steps}
 mkdir -p "$work"
 work=$(realpath "$work")
@@ -61,9 +68,16 @@ time_once() {
 # stats: min median max of the numbers on stdin
 stats() { sort -g | awk '{v[NR]=$1} END {m=(NR%2)?v[(NR+1)/2]:(v[NR/2]+v[NR/2+1])/2; printf "%.3f %.3f %.3f\n", v[1], m, v[NR]}'; }
 
-# compare NAME DIR_A STEPS -- CMD_A...: peer (A) against gimlet (B) at STEPS steps.
+# expect LOG PATTERN: stop unless the peer's output holds PATTERN (a peer that exits 0 without
+# running the scene would otherwise be timed as fast).
+expect() {
+    grep -q -- "$2" "$1" || { echo "run.sh: '$2' not found in $1: the peer did not run the scene" >&2; exit 1; }
+}
+
+# compare NAME DIR_A STEPS PATTERN -- CMD_A...: peer (A) against gimlet (B) at STEPS steps;
+# PATTERN must appear in the peer's output.
 compare() {
-    local name=$1 dir=$2 n=$3; shift 4
+    local name=$1 dir=$2 n=$3 pattern=$4; shift 5
     local b=("$gimlet" --scene reference --threads 2 --cell 0.5 --steps "$n" --repeats 1)
     local la lb ta tb
     la="$work/$name.out" lb="$work/$name.gimlet.out"
@@ -72,6 +86,7 @@ compare() {
     echo "   B = ${b[*]}"
     local before; before=$(load)
     time_once "$la" "$dir" "$@" >/dev/null       # warm-up, not counted
+    expect "$la" "$pattern"
     time_once "$lb" "$work" "${b[@]}" >/dev/null
     local sa=() sb=() r=()
     for ((k = 1; k <= runs; ++k)); do
@@ -101,7 +116,7 @@ if [ -n "$karamelo" ]; then
         mkdir -p "$d"
         with_steps "$here/karamelo/reference_$shape.mpm" "$d/reference.mpm" "$steps"
         # shellcheck disable=SC2086
-        compare "karamelo_$shape" "$d" "$steps" -- $mpirun_cmd "$karamelo" -i reference.mpm
+        compare "karamelo_$shape" "$d" "$steps" "^$steps[[:space:]]" -- $mpirun_cmd "$karamelo" -i reference.mpm
     done
 fi
 
@@ -109,13 +124,13 @@ if [ -n "$nairn" ]; then
     d="$work/nairnmpm"
     mkdir -p "$d"
     # MaxTime = (STEPS - 0.5) dt gives STEPS steps (NairnMPM steps while t <= MaxTime)
-    sed "s/\"1.3993e-5\"/\"$(awk "BEGIN { printf \"%.6g\", ($steps - 0.5) * 1.4e-8 }")\"/" \
+    sed "s/\"1.3993e-5\"/\"$(awk "BEGIN { printf \"%.10g\", ($steps - 0.5) * 1.4e-8 }")\"/" \
         "$here/nairnmpm/reference.fmcmd" >"$d/reference.fmcmd"
-    compare nairnmpm "$d" "$steps" -- "$nairn" -np 2 -w reference.fmcmd
+    compare nairnmpm "$d" "$steps" "Calculation Steps: $steps\$" -- "$nairn" -np 2 -w reference.fmcmd
 fi
 
 if [ -n "$cbgeo" ]; then
     d="$work/cbgeo"
     python3 "$here/cbgeo/make_deck.py" "$d" "$cbgeo_steps"
-    compare cbgeo "$d" "$cbgeo_steps" -- "$cbgeo" -f "$d/" -i mpm.json -p 2
+    compare cbgeo "$d" "$cbgeo_steps" "Step: $((cbgeo_steps - 1)) of $cbgeo_steps\." -- "$cbgeo" -f "$d/" -i mpm.json -p 2
 fi
