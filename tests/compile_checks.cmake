@@ -106,7 +106,7 @@ endfunction()
 # Parsing Eigen is most of what a header check costs (1.2 of a check's 1.7 s). The checks
 # therefore share one precompiled <Eigen/Core> and <Eigen/LU> (target gimlet_header_check_pch,
 # compiled as the checks are), and a header uses it only where its own include closure reaches
-# Eigen (62 of 71 headers): there, Eigen included first shows the check nothing that the
+# Eigen (64 of 71 headers): there, Eigen included first shows the check nothing that the
 # header's own includes do not bring. The others, which must compile with no Eigen at all, skip
 # it (docs/testing.md).
 set(_gimlet_eigen_pch_source "${CMAKE_CURRENT_BINARY_DIR}/header_check_pch.cpp")
@@ -228,7 +228,10 @@ foreach(src IN LISTS GIMLET_FAILTEST_SOURCES)
                          --target ${target} ${_gimlet_config_args})
         set_tests_properties(static.fail.${name}_${kind} PROPERTIES
             LABELS "static;failtest"
-            RESOURCE_LOCK gimlet_build_tree)
+            RESOURCE_LOCK gimlet_build_tree
+            # Started first: they run one at a time (the lock), and ctest, which on a fresh
+            # clone has no timings, had left the whole chain for the end, alone on one core.
+            COST 1000)
         if(kind STREQUAL "ko")
             if(_expect)
                 # Passing on the expected diagnostic (only printed when compilation fails).
@@ -274,7 +277,8 @@ add_test(NAME package.install
                  -P "${CMAKE_CURRENT_SOURCE_DIR}/package/install.cmake")
 set_tests_properties(package.install PROPERTIES
     LABELS package
-    FIXTURES_SETUP gimlet_installed)
+    FIXTURES_SETUP gimlet_installed
+    COST 1000)  # first: the consumer builds (about 25 s) wait on it
 
 # A project built against the installed copy with ctest --build-and-test, then run.
 function(gimlet_package_test name source binary)
@@ -288,7 +292,8 @@ function(gimlet_package_test name source binary)
                      --test-command ${ARGN})
     set_tests_properties("${name}" PROPERTIES
         LABELS package
-        FIXTURES_REQUIRED gimlet_installed)
+        FIXTURES_REQUIRED gimlet_installed
+        COST 1000)  # the longest tests of the release preset: started early, not last
 endfunction()
 
 gimlet_package_test(package.consume "${CMAKE_CURRENT_SOURCE_DIR}/package" "${GIMLET_PACKAGE_BUILD}"
