@@ -145,15 +145,15 @@ TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the unin
     fs::remove_all(dir);
     const std::string a = (dir / "a").string(), b = (dir / "b").string(), ckpt = (dir / "b" / "run.ckpt").string();
     // Periodic snapshots at 0, 8 and 16 us, and listed ones 1, 4 and 8 us after the contact at 6.67 us.
-    const std::string coarse = ::coarse + " --snapshots-after-contact-us 1,4,8";
+    const std::string args = coarse + " --snapshots-after-contact-us 1,4,8";
     std::string log;
-    REQUIRE(run(coarse + " --end-us 20 --output \"" + a + "\"", dir, log) == 0);
+    REQUIRE(run(args + " --end-us 20 --output \"" + a + "\"", dir, log) == 0);
     // The interrupted run went past its checkpoint and left a torn last line: the resumed run
     // must replace everything written after the checkpoint, not keep it.
-    REQUIRE(run(coarse + " --end-us 20 --output \"" + b + "\" --checkpoint \"" + ckpt + "\" --checkpoint-at-us 9", dir,
+    REQUIRE(run(args + " --end-us 20 --output \"" + b + "\" --checkpoint \"" + ckpt + "\" --checkpoint-at-us 9", dir,
                 log) == 0);
     std::ofstream(fs::path(b) / "series.csv", std::ios::app) << "19.9,13.2,0.0";
-    REQUIRE(run(coarse + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) == 0);
+    REQUIRE(run(args + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) == 0);
     INFO(log);
     for (const char* f : {"series.csv", "snapshots/times.csv", "snapshots/particles.pvd", "snapshots/particles_000002.vtp",
                           "snapshots/particles_000005.vtp", "snapshots/map_0004.csv"})
@@ -169,15 +169,15 @@ TEST_CASE("cavity_collapse: a run resumed from a checkpoint writes what the unin
         if (sa.columns[i] != "wall_s") CHECK(sa.rows[0][i] == sb.rows[0][i]);
 
     // A restart into a fresh folder is refused, saying which folder to give.
-    CHECK(run(coarse + " --end-us 20 --output \"" + (dir / "fresh").string() + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(run(args + " --end-us 20 --output \"" + (dir / "fresh").string() + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
     CHECK(log.find("--output must name the folder of the run that wrote the checkpoint") != std::string::npos);
     // A restart with another flag than the original run's is refused, naming it.
-    CHECK(run(coarse + " --velocity 250 --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(run(args + " --velocity 250 --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
     CHECK(log.find("velocity_m_s") != std::string::npos);
     // A truncated checkpoint is refused, never loaded in part.
     const std::string bytes = slurp(ckpt);
     std::ofstream(ckpt, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size() / 2));
-    CHECK(run(coarse + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
+    CHECK(run(args + " --end-us 20 --output \"" + b + "\" --restart \"" + ckpt + "\"", dir, log) != 0);
     CHECK(log.find("run.ckpt") != std::string::npos);
     CHECK(log.find("truncated") != std::string::npos);
     fs::remove_all(dir);
