@@ -462,3 +462,5 @@ TEST_CASE("uGIMP with a zero half-width degrades to linear MPM, not NaN", "[shap
         }
     }
 }
+
+#undef GIMLET_CHECK_WORST  // the family's files compile as one unit (docs/testing.md)
