@@ -14,15 +14,29 @@ if(NOT EXISTS "${TEST_EXECUTABLE}")
     message(FATAL_ERROR "test executable '${TEST_EXECUTABLE}' does not exist")
 endif()
 
-execute_process(
-    COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" ${TEST_SPEC} --list-test-names-only
-    OUTPUT_VARIABLE listing
-    RESULT_VARIABLE result
-    WORKING_DIRECTORY "${TEST_WORKING_DIR}")
-# Catch v2 exits with the number of tests listed (modulo 256); anything else is a crash.
-if(NOT result MATCHES "^[0-9]+$")
-    message(FATAL_ERROR "listing the tests of '${TEST_EXECUTABLE}' failed: ${result}\n${listing}")
-endif()
+# Lists the test cases `spec` selects into `out`, one name a line. Catch v2 exits with the number
+# of names it listed (modulo 256) and writes nothing to stderr; anything else is a failure, never
+# an empty listing: a test case name defined twice makes Catch2 print an error on stderr and exit
+# with 255 before listing anything, and that must not register zero tests in silence.
+function(_gimlet_list out)
+    execute_process(
+        COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" ${ARGN} --list-test-names-only
+        OUTPUT_VARIABLE listing
+        ERROR_VARIABLE errors
+        RESULT_VARIABLE result
+        WORKING_DIRECTORY "${TEST_WORKING_DIR}")
+    # Counted by their newlines (never as a CMake list: a name may contain ';').
+    string(REGEX REPLACE "[^\n]" "" newlines "${listing}")
+    string(LENGTH "${newlines}" count)
+    math(EXPR expected "${count} % 256")
+    if(NOT result STREQUAL "${expected}" OR NOT errors STREQUAL "")
+        message(FATAL_ERROR "listing the tests of '${TEST_EXECUTABLE}' (${ARGN}) failed: "
+                            "exit status ${result} for ${count} names\n${errors}\n${listing}")
+    endif()
+    set(${out} "${listing}" PARENT_SCOPE)
+endfunction()
+
+_gimlet_list(listing ${TEST_SPEC})
 
 # Quote `text` as a CMake bracket argument.
 function(_gimlet_bracket out text)
@@ -53,14 +67,7 @@ endforeach()
 
 # Test cases tagged [long] (physics at full resolution, run in the release preset only; see
 # docs/testing.md) also get the ctest label `long`, which the asan-ubsan test preset excludes.
-execute_process(
-    COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" "[long]" --list-test-names-only
-    OUTPUT_VARIABLE long_listing
-    RESULT_VARIABLE result
-    WORKING_DIRECTORY "${TEST_WORKING_DIR}")
-if(NOT result MATCHES "^[0-9]+$")
-    message(FATAL_ERROR "listing the [long] tests of '${TEST_EXECUTABLE}' failed: ${result}\n${long_listing}")
-endif()
+_gimlet_list(long_listing "[long]")
 # Compared line by line as text (never as a CMake list: a name may contain ';').
 string(REPLACE "\r" "" long_listing "\n${long_listing}\n")
 # Their labels: the ones given in TEST_PROPERTIES, and `long`.

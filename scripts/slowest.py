@@ -11,8 +11,8 @@ hand on any build tree:
 
 With --test-guard and --unit-guard it also names every test slower than the guard that is not
 labelled `long`, and every translation unit slower than its guard: the growth guard of
-docs/testing.md (such a test needs the `long` label or a reason in a comment; such a unit, a
-reason).
+docs/testing.md (such a test needs the `long` label or a reason in a comment; such a unit is
+split).
 """
 
 import argparse
@@ -63,7 +63,7 @@ def main():
     ap.add_argument("--build", required=True, help="the preset's build tree")
     ap.add_argument("--count", type=int, default=10)
     ap.add_argument("--test-guard", type=float, help="seconds above which a test needs `long` or a reason")
-    ap.add_argument("--unit-guard", type=float, help="seconds above which a translation unit needs a reason")
+    ap.add_argument("--unit-guard", type=float, help="seconds above which a translation unit is split")
     a = ap.parse_args()
     over = []
 
@@ -98,7 +98,7 @@ def main():
     else:
         print(f"=== {a.preset}: no build log ({log}) ===")
     if over:
-        print(f"=== {a.preset}: over the growth guard (docs/testing.md: the `long` label, or a reason in a comment) ===")
+        print(f"=== {a.preset}: over the growth guard (docs/testing.md: a test takes the `long` label or a reason in a comment; a unit is split) ===")
         for line in over:
             print(f"  {line}")
     return 0
