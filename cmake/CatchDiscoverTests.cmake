@@ -14,29 +14,8 @@ if(NOT EXISTS "${TEST_EXECUTABLE}")
     message(FATAL_ERROR "test executable '${TEST_EXECUTABLE}' does not exist")
 endif()
 
-# Lists the test cases `spec` selects into `out`, one name a line. Catch v2 exits with the number
-# of names it listed (modulo 256) and writes nothing to stderr; anything else is a failure, never
-# an empty listing: a test case name defined twice makes Catch2 print an error on stderr and exit
-# with 255 before listing anything, and that must not register zero tests in silence.
-function(_gimlet_list out)
-    execute_process(
-        COMMAND ${TEST_EXECUTOR} "${TEST_EXECUTABLE}" ${ARGN} --list-test-names-only
-        OUTPUT_VARIABLE listing
-        ERROR_VARIABLE errors
-        RESULT_VARIABLE result
-        WORKING_DIRECTORY "${TEST_WORKING_DIR}")
-    # Counted by their newlines (never as a CMake list: a name may contain ';').
-    string(REGEX REPLACE "[^\n]" "" newlines "${listing}")
-    string(LENGTH "${newlines}" count)
-    math(EXPR expected "${count} % 256")
-    if(NOT result STREQUAL "${expected}" OR NOT errors STREQUAL "")
-        message(FATAL_ERROR "listing the tests of '${TEST_EXECUTABLE}' (${ARGN}) failed: "
-                            "exit status ${result} for ${count} names\n${errors}\n${listing}")
-    endif()
-    set(${out} "${listing}" PARENT_SCOPE)
-endfunction()
-
-_gimlet_list(listing ${TEST_SPEC})
+include("${CMAKE_CURRENT_LIST_DIR}/CatchList.cmake")
+gimlet_catch_list(listing "${TEST_EXECUTABLE}" "${TEST_EXECUTOR}" "${TEST_WORKING_DIR}" ${TEST_SPEC})
 
 # Quote `text` as a CMake bracket argument.
 function(_gimlet_bracket out text)
@@ -67,7 +46,7 @@ endforeach()
 
 # Test cases tagged [long] (physics at full resolution, run in the release preset only; see
 # docs/testing.md) also get the ctest label `long`, which the asan-ubsan test preset excludes.
-_gimlet_list(long_listing "[long]")
+gimlet_catch_list(long_listing "${TEST_EXECUTABLE}" "${TEST_EXECUTOR}" "${TEST_WORKING_DIR}" "[long]")
 # Compared line by line as text (never as a CMake list: a name may contain ';').
 string(REPLACE "\r" "" long_listing "\n${long_listing}\n")
 # Their labels: the ones given in TEST_PROPERTIES, and `long`.
