@@ -32,6 +32,17 @@ struct solver_options {
     /// and it goes back to the particles that exerted it, so momentum stays exact (see
     /// docs/equations.md, "Light nodes"). In [0, 1e-3].
     double mass_cutoff = 1e-12;
+    /// A particle lighter than this fraction of the heaviest particle with a nonzero weight on
+    /// its stencil's nodes (in its own field) is a light particle: it takes the velocity of its
+    /// nodes weighted by how much of the densest material each carries, and its velocity
+    /// gradient the same way, and the momentum that changes goes back to the other particles
+    /// of its nodes, so momentum stays exact and the kinetic energy it removes becomes its
+    /// internal energy (docs/equations.md, "Light particles"). Without it such a particle is
+    /// flung by the accelerations of its heavy neighbours' edge nodes. Mass ratios above it
+    /// (two materials in one field, densities a few times apart) are left to the transfer as
+    /// it is. 0 = off. In [0, 0.5]. Nothing of it runs in a scene whose lightest particle is
+    /// at least this fraction of its heaviest.
+    double light_particle_ratio = 0.05;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();
     /// Body force per unit mass (m/s^2), e.g. gravity.
@@ -60,6 +71,8 @@ struct solver_options {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
         require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
         require(mass_cutoff >= 0.0 && mass_cutoff <= 1e-3, "mass_cutoff", mass_cutoff, "[0, 1e-3]");
+        require(light_particle_ratio >= 0.0 && light_particle_ratio <= 0.5, "light_particle_ratio",
+                light_particle_ratio, "[0, 0.5] (0 = off)");
         require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
         for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
         require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");

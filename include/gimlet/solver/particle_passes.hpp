@@ -37,8 +37,12 @@ template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList Ex
 void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
     matrix L = matrix::Zero();
-    auto at = entries(i);
-    stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[at(node)] * g.transpose(); });
+    if (!light_list_.empty() && light_particle_[i]) {
+        L = light_velocity_gradient(i, vg);
+    } else {
+        auto at = entries(i);
+        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[at(node)] * g.transpose(); });
+    }
     if (options_.volumetric_average) {
         const std::size_t c = cell_key(i);
         L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
@@ -100,8 +104,12 @@ void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std:
     cell_volume_.assign(n, real(0));
     for_each_particle_by_slab([&](std::size_t i) {
         real rate = 0;
-        auto at = entries(i);
-        stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[at(node)].dot(g); });
+        if (!light_list_.empty() && light_particle_[i]) {
+            rate = light_velocity_gradient(i, vg).trace();
+        } else {
+            auto at = entries(i);
+            stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[at(node)].dot(g); });
+        }
         const real v = current_volume(particles_[i]);
         const std::size_t c = cell_key(i);
         cell_rate_[c] += v * rate;

@@ -114,6 +114,7 @@ public:
         real heaviest = 0;
         for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
         mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+        check_light_possible();
         if constexpr (multi_field) {
             // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
             // them; a single-field policy keeps one.
@@ -224,6 +225,8 @@ public:
         pending_health_.valid = false;
     }
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
+    /// How many particles the last step treated as light (solver_options::light_particle_ratio).
+    [[nodiscard]] std::size_t light_particles() const noexcept { return light_list_.size(); }
     /// Wall-clock time per phase of the steps so far (see docs/performance.md).
     [[nodiscard]] const step_timings& timings() const noexcept { return timings_; }
     /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
@@ -338,6 +341,7 @@ private:
     // and the contact pass that decides where contact acts in this step.
     void grid_update_and_contact(real dt, phase_clock& lap) {
         scatter<true>();
+        find_light_particles();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
         update_grid_momentum(dt, true);
@@ -375,6 +379,7 @@ private:
         // acts in this step (multi_field::pass::trial).
         if constexpr (multi_field) scatter<true>();
         else scatter<false>();
+        find_light_particles();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
         nodal_velocity(grid_.velocity_old);
@@ -452,6 +457,10 @@ private:
     void fill_entries(std::vector<vector>& out, const vector& value);
     void update_grid_momentum(real dt, bool with_old_velocity);
     void grid_to_particles(real dt, bool remap);
+    template <bool Lights>
+    void grid_to_particles_pass(real dt, bool remap);
+    [[nodiscard]] bool on_light_node(std::size_t e, real w, const vector& g) const;
+    [[nodiscard]] vector light_node_change(std::size_t i, real dt) const;
 
     // ---- particle passes (solver/particle_passes.hpp): the material update, volumetric
     // averaging, the step's last pass, sorting
@@ -463,6 +472,14 @@ private:
     void average_volumetric_rates(const std::vector<vector>& vg);
     void finish_step(real dt, bool update_materials);
     void sort_by_cell();
+
+    // Light particles (light_particles.hpp; solver_options::light_particle_ratio).
+    void check_light_possible();
+    void find_light_particles();
+    [[nodiscard]] real reliability(std::size_t e) const;
+    [[nodiscard]] real heavy_mass(std::size_t e) const;
+    [[nodiscard]] matrix light_velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
+    void move_light_particles(real dt);
 
     // ---- multi-field contact (multi_field::exchange) --------------------------------------
 
@@ -558,6 +575,7 @@ private:
     void check_pending() {
         if (!state_touched_) return;
         check_particles();
+        check_light_possible();  // the masses may have changed
         state_touched_ = false;
     }
 
@@ -605,6 +623,15 @@ private:
     // (fields_per_body > 1 only).
     std::vector<std::array<std::uint8_t, stencil_type::nodes>> sides_;
     real dt_ = 0;
+    // Light particles, this step (light_particles.hpp): none unless light_possible_. Per particle
+    // 1 if light (2 if light but moved by FLIP: no node with non-light mass), the light ones in
+    // index order, and per node entry the heaviest particle, the largest density, the light
+    // particles' mass and the momentum they changed.
+    bool light_possible_ = false;
+    std::vector<std::uint8_t> light_particle_;
+    std::vector<std::size_t> light_list_;
+    std::vector<real> node_heaviest_, node_densest_, light_mass_;
+    std::vector<vector> light_momentum_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
@@ -612,5 +639,6 @@ private:
 
 }  // namespace gimlet
 
+#include "gimlet/solver/light_particles.hpp"
 #include "gimlet/solver/particle_passes.hpp"
 #include "gimlet/solver/transfers.hpp"

@@ -153,6 +153,30 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool 
 // particle's stencil, which is invariant, and close to their variance (so positive) at a
 // stable step. Each particle takes that share.
 
+// Whether node entry e, with particle weight w and gradient g, is a light node of the
+// particle's (a stencil node it neither weighs nor pushes is not).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+bool solver<S, Sh, M, C, ExtraFields, Part>::on_light_node(std::size_t e, real w, const vector& g) const {
+    return !(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero());
+}
+
+// dt f_ip / m_p summed over particle i's light nodes, as far as the walls leave it free.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::light_node_change(std::size_t i, real dt) const -> vector {
+    const auto& m = particles_.template column<fields::mass>();
+    const matrix vs = force_stress(i);
+    vector mb = m[i] * options_.body_force.template cast<real>();
+    if constexpr (store_type::template has<fields::external_acceleration>)
+        mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
+    vector own = vector::Zero();
+    auto at = entries(i);
+    stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
+        const std::size_t e = at(node);
+        if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
+    });
+    return dt / m[i] * own;
+}
+
 // FLIP velocity update with the damping blend, and x_p += dt sum S_ip v_i^{n+1}
 // (docs/physics.md section 1, step 3), with the light nodes' forces above. With remap (MUSL),
 // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
@@ -160,16 +184,36 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool 
 // momenta only.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool remap) {
+    // Particles far lighter than their neighbours first (light_particles.hpp): they take their
+    // velocities here, and the others take back the momentum they changed below.
+    // The pass is compiled twice: a scene without light particles runs the plain one.
+    if (light_list_.empty()) grid_to_particles_pass<false>(dt, remap);
+    else grid_to_particles_pass<true>(dt, remap);
+}
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <bool Lights>
+void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, bool remap) {
     auto& x = particles_.template column<fields::position>();
     auto& v = particles_.template column<fields::velocity>();
     auto& energy = particles_.template column<fields::specific_internal_energy>();
     const auto& m = particles_.template column<fields::mass>();
     const real alpha = real(options_.pic_fraction);
     const bool damping = alpha > 0;
-    const vector b = options_.body_force.template cast<real>();
+    if constexpr (Lights) move_light_particles(dt);
+    // MUSL's re-map of particle i's new momentum.
+    auto scatter_momentum = [&](std::size_t i) {
+        const vector mv = m[i] * v[i];
+        auto at = entries(i);
+        stencils_[i].for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[at(node)] += w * mv; });
+    };
     auto update = [&](std::size_t i) {
-        vector v_pic = vector::Zero(), dv = vector::Zero(), old = vector::Zero();  // old: S v^n, for the blend
         const auto& st = stencils_[i];
+        if (Lights && light_particle_[i] == 1) {
+            if (remap) scatter_momentum(i);
+            return;
+        }
+        vector v_pic = vector::Zero(), dv = vector::Zero(), old = vector::Zero();  // old: S v^n, for the blend
         bool light = false;
         auto at = entries(i);  // one chooser per pass over the stencil
         st.for_each([&](std::size_t node, real w, const vector& g) {
@@ -177,24 +221,13 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool rem
             v_pic += w * grid_.velocity[e];
             dv += w * (grid_.velocity[e] - grid_.velocity_old[e]);
             if (damping) old += w * grid_.velocity_old[e];
-            // (A stencil node the particle neither weighs nor pushes is no light node of its.)
-            light = light || (!(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero()));
+            light = light || on_light_node(e, w, g);
         });
         vector change = vector::Zero();
         if (light) {
-            // Rare: only particles on a light node pay for this pass.
-            const matrix vs = force_stress(i);
-            vector mb = m[i] * b;
-            if constexpr (store_type::template has<fields::external_acceleration>)
-                mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
-            vector own = vector::Zero();
-            auto at_light = entries(i);
-            st.for_each([&](std::size_t node, real w, const vector& g) {
-                const std::size_t e = at_light(node);
-                if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
-            });
-            // Into the PIC velocity too, which then sums to the nodes' momenta exactly.
-            change = dt / m[i] * own;
+            // Rare: only particles on a light node pay for this pass. Into the PIC velocity
+            // too, which then sums to the nodes' momenta exactly.
+            change = light_node_change(i, dt);
             dv += change;
             v_pic += change;
         }
@@ -216,11 +249,19 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool rem
             v[i] = v_flip - alpha * d;
             energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
         }
-        if (remap) {
-            const vector mv = m[i] * v[i];
-            auto at_remap = entries(i);
-            st.for_each([&](std::size_t node, real w, const vector&) { grid_.momentum[at_remap(node)] += w * mv; });
+        if (Lights && !light_particle_[i]) {
+            // Its share of the momentum the light particles changed at its nodes:
+            // dv_q = -sum_i S_iq P_i / m_i^N (docs/equations.md, "Light particles").
+            vector back = vector::Zero();
+            auto at_back = entries(i);
+            st.for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t e = at_back(node);
+                const real heavy = heavy_mass(e);
+                if (heavy > 0) back += w / heavy * light_momentum_[e];
+            });
+            v[i] -= back;
         }
+        if (remap) scatter_momentum(i);
     };
     if (remap) {
         fill_entries(grid_.momentum, vector::Zero());

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The solver's treatment of particles far lighter than their neighbours
+/// (solver_options::light_particle_ratio; docs/equations.md, "Light particles").
+///
+/// Where a heavy particle has a tiny weight S at a node, the node's velocity increment
+/// dt f_i / m_i grows as 1/sqrt(S) (GIMP's gradient at the edge of a support is not small where
+/// the weight is). The heavy particle reads it with weight S, harmlessly; a much lighter particle
+/// on the same node reads it with weight O(1) and is flung (52-115 km/s in the sparse-cloud hard
+/// case, det F down to 0). A light particle therefore reads each node by its reliability
+/// k_i = m_i / rho_i^max (the volume of the node's densest material its mass amounts to), for
+/// its velocity and for its velocity gradient, and the momentum it changes against FLIP goes back
+/// to the non-light particles of its nodes, so momentum stays exact.
+
+#include "gimlet/solver/solver.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace gimlet {
+
+// Whether any particle can be light: masses only change when the user touches the particles,
+// and a particle is light only against a heavier one on its stencil, so none can be where the
+// lightest particle is at least theta times the heaviest. Then nothing below runs.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::check_light_possible() {
+    const auto& m = particles_.template column<fields::mass>();
+    if (m.empty() || !(options_.light_particle_ratio > 0)) {
+        light_possible_ = false;
+    } else {
+        const auto [lo, hi] = std::minmax_element(m.begin(), m.end());
+        light_possible_ = *lo < real(options_.light_particle_ratio) * *hi;
+    }
+    light_list_.clear();
+}
+
+// After the step's first scatter: per node entry (so per field), the heaviest particle with a
+// nonzero weight there and the largest current density m_q / V_q among them (both maxima, so the
+// slab scatter's order does not matter); then p is light if m_p < theta M_p, M_p the heaviest
+// particle on p's stencil. For the light particles (in index order, one thread: they are few and
+// the sums must not depend on the thread count), the nodes' light mass, sum S_ip m_p.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
+    light_list_.clear();
+    if (!light_possible_) return;
+    const auto& m = particles_.template column<fields::mass>();
+    node_heaviest_.assign(grid_.entries(), real(0));
+    node_densest_.assign(grid_.entries(), real(0));
+    for_each_particle_by_slab([&](std::size_t q) {
+        const real rho = m[q] / current_volume(particles_[q]);
+        auto at = entries(q);
+        stencils_[q].for_each([&](std::size_t node, real w, const vector&) {
+            const std::size_t e = at(node);
+            if (w > 0) {
+                node_heaviest_[e] = std::max(node_heaviest_[e], m[q]);
+                node_densest_[e] = std::max(node_densest_[e], rho);
+            }
+        });
+    });
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    light_particle_.assign(particles_.size(), 0);
+    const real theta = real(options_.light_particle_ratio);
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+        const auto q = static_cast<std::size_t>(k);
+        real heaviest = 0;
+        auto at = entries(q);
+        stencils_[q].for_each([&](std::size_t node, real w, const vector&) {
+            const std::size_t e = at(node);
+            if (w > 0) heaviest = std::max(heaviest, node_heaviest_[e]);
+        });
+        light_particle_[q] = m[q] < theta * heaviest ? 1 : 0;
+    }
+    for (std::size_t q = 0; q < particles_.size(); ++q)
+        if (light_particle_[q]) light_list_.push_back(q);
+    if (light_list_.empty()) return;
+    light_mass_.assign(grid_.entries(), real(0));
+    for (std::size_t p : light_list_) {
+        auto at = entries(p);
+        stencils_[p].for_each([&](std::size_t node, real w, const vector&) { light_mass_[at(node)] += w * m[p]; });
+    }
+}
+
+// A node's reliability k_i = m_i / rho_i^max (zero where no particle weighs it).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::reliability(std::size_t e) const -> real {
+    return node_densest_[e] > 0 ? grid_.mass[e] / node_densest_[e] : real(0);
+}
+
+// The mass of node entry e from particles that are not light, where it can take a share of the
+// light particles' momentum (over 1e-12 of the node's mass, so that the division is safe); else 0.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::heavy_mass(std::size_t e) const -> real {
+    const real heavy = grid_.mass[e] - light_mass_[e];
+    return heavy > real(1e-12) * grid_.mass[e] ? heavy : real(0);
+}
+
+// A light particle's velocity gradient (instead of sum_i v_i (x) G_ip):
+// L_p = sum_i (lambda_i v_i + (1 - lambda_i) vbar_p) (x) G_ip with lambda_i = k_i / max_j k_j and
+// vbar_p = sum_i S_ip k_i v_i / sum_i S_ip k_i: a node that carries little of the densest
+// material strains the particle by little (docs/equations.md, "Light particles").
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+auto solver<S, Sh, M, C, ExtraFields, Part>::light_velocity_gradient(std::size_t i, const std::vector<vector>& vg) const
+    -> matrix {
+    matrix L = matrix::Zero();
+    real k_max = 0, k_sum = 0;
+    vector mean = vector::Zero();
+    auto at = entries(i);
+    stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+        const std::size_t e = at(node);
+        const real k = reliability(e);
+        if (w > 0) k_max = std::max(k_max, k);
+        mean += w * k * vg[e];
+        k_sum += w * k;
+    });
+    if (k_sum > 0) mean /= k_sum;
+    auto at_grad = entries(i);
+    stencils_[i].for_each([&](std::size_t node, real, const vector& g) {
+        const std::size_t e = at_grad(node);
+        const real lambda = k_max > 0 ? std::min(real(1), reliability(e) / k_max) : real(0);
+        L.noalias() += (lambda * vg[e] + (1 - lambda) * mean) * g.transpose();
+    });
+    return L;
+}
+
+// Before the grid-to-particle pass, on one thread in index order: each light particle p takes
+// v_p' = sum_i S_ip k_i v_i / sum_i S_ip k_i (the nodes' velocities after the grid update) as its
+// velocity and for its position update. Its momentum change against FLIP, D_p = m_p (v_p' - v_p^FLIP),
+// is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass) and
+// summed per node in light_momentum_; grid_to_particles hands -light_momentum_ to the node's
+// non-light particles in proportion to S_iq m_q. The kinetic energy this changes is not booked
+// as heat, as the contact policies do not book theirs (docs/equations.md, "Light particles", says
+// why and how much). Its FLIP velocity is the one grid_to_particles would give it, with its light
+// nodes' forces. A light particle none of whose nodes has non-light mass keeps its FLIP velocity
+// (there is nothing to return its momentum to); it is marked 2 in light_particle_.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::move_light_particles(real dt) {
+    auto& x = particles_.template column<fields::position>();
+    auto& v = particles_.template column<fields::velocity>();
+    const auto& m = particles_.template column<fields::mass>();
+    light_momentum_.assign(grid_.entries(), vector::Zero());
+    for (std::size_t p : light_list_) {
+        vector v_flip = v[p], v_read = vector::Zero();
+        real k_sum = 0, heavy_sum = 0;
+        bool light_node = false;
+        auto at = entries(p);
+        stencils_[p].for_each([&](std::size_t node, real w, const vector& g) {
+            const std::size_t e = at(node);
+            v_flip += w * (grid_.velocity[e] - grid_.velocity_old[e]);
+            light_node = light_node || on_light_node(e, w, g);
+            const real k = reliability(e);
+            v_read += w * k * grid_.velocity[e];
+            k_sum += w * k;
+            heavy_sum += w * heavy_mass(e);
+        });
+        if (light_node) v_flip += light_node_change(p, dt);
+        if (!(k_sum > 0) || !(heavy_sum > 0)) {
+            // Its nodes carry no material but its own: it moves as FLIP moves it.
+            light_particle_[p] = 2;
+            continue;
+        }
+        v_read /= k_sum;
+        const vector D = m[p] * (v_read - v_flip);
+        auto at_share = entries(p);
+        stencils_[p].for_each([&](std::size_t node, real w, const vector&) {
+            const std::size_t e = at_share(node);
+            light_momentum_[e] += D * (w * heavy_mass(e) / heavy_sum);
+        });
+        x[p] += dt * v_read;
+        v[p] = v_read;
+    }
+}
+
+}  // namespace gimlet
