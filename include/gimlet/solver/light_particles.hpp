@@ -17,30 +17,38 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace gimlet {
 
 // Whether any particle can be light: masses only change when the user touches the particles,
-// and a particle is light only against a heavier one on its stencil, so none can be where the
-// lightest particle is at least theta times the heaviest. Then nothing below runs.
+// and a particle is light only against a heavier one on its stencil (in its field), so none can
+// be where the lightest particle is at least theta times the heaviest: of the scene, or with a
+// multi-field contact (whose fields never mix bodies) of each body. Then nothing below runs.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::check_light_possible() {
     const auto& m = particles_.template column<fields::mass>();
-    if (m.empty() || !(options_.light_particle_ratio > 0)) {
-        light_possible_ = false;
-    } else {
-        const auto [lo, hi] = std::minmax_element(m.begin(), m.end());
-        light_possible_ = *lo < real(options_.light_particle_ratio) * *hi;
+    const auto& body = particles_.template column<fields::body>();
+    light_possible_ = false;
+    if (m.empty() || !(options_.light_particle_ratio > 0)) return;
+    const std::size_t groups = multi_field ? materials_.size() : 1;
+    std::vector<real> lightest(groups, std::numeric_limits<real>::infinity()), heaviest(groups, real(0));
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        const std::size_t g = multi_field ? std::size_t(body[i]) : 0;
+        lightest[g] = std::min(lightest[g], m[i]);
+        heaviest[g] = std::max(heaviest[g], m[i]);
     }
-    light_list_.clear();
+    for (std::size_t g = 0; g < groups; ++g)
+        light_possible_ = light_possible_ || lightest[g] < real(options_.light_particle_ratio) * heaviest[g];
 }
 
 // After the step's first scatter: per node entry (so per field), the heaviest particle with a
 // nonzero weight there and the largest current density m_q / V_q among them (both maxima, so the
 // slab scatter's order does not matter); then p is light if m_p < theta M_p, M_p the heaviest
-// particle on p's stencil. For the light particles (in index order, one thread: they are few and
-// the sums must not depend on the thread count), the nodes' light mass, sum S_ip m_p.
+// particle on p's stencil. Then, at the nodes of the light particles' stencils, the mass of the
+// particles that are not light, sum_q S_iq m_q (a sum of its own rather than m_i less the light
+// mass, whose rounding would not cancel where the light mass dominates).
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
     light_list_.clear();
@@ -60,7 +68,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
         });
     });
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-    light_particle_.assign(particles_.size(), 0);
+    light_particle_.assign(particles_.size(), lightness::none);
     const real theta = real(options_.light_particle_ratio);
     GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
     for (std::ptrdiff_t k = 0; k < n; ++k) {
@@ -71,16 +79,25 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
             const std::size_t e = at(node);
             if (w > 0) heaviest = std::max(heaviest, node_heaviest_[e]);
         });
-        light_particle_[q] = m[q] < theta * heaviest ? 1 : 0;
+        light_particle_[q] = m[q] < theta * heaviest ? lightness::light : lightness::none;
     }
     for (std::size_t q = 0; q < particles_.size(); ++q)
-        if (light_particle_[q]) light_list_.push_back(q);
+        if (light_particle_[q] != lightness::none) light_list_.push_back(q);
     if (light_list_.empty()) return;
-    light_mass_.assign(grid_.entries(), real(0));
+    near_light_.assign(grid_.entries(), 0);
     for (std::size_t p : light_list_) {
         auto at = entries(p);
-        stencils_[p].for_each([&](std::size_t node, real w, const vector&) { light_mass_[at(node)] += w * m[p]; });
+        stencils_[p].for_each([&](std::size_t node, real, const vector&) { near_light_[at(node)] = 1; });
     }
+    node_heavy_mass_.assign(grid_.entries(), real(0));
+    for_each_particle_by_slab([&](std::size_t q) {
+        if (light_particle_[q] != lightness::none) return;
+        auto at = entries(q);
+        stencils_[q].for_each([&](std::size_t node, real w, const vector&) {
+            const std::size_t e = at(node);
+            if (near_light_[e]) node_heavy_mass_[e] += w * m[q];
+        });
+    });
 }
 
 // A node's reliability k_i = m_i / rho_i^max (zero where no particle weighs it).
@@ -89,12 +106,10 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::reliability(std::size_t e) const ->
     return node_densest_[e] > 0 ? grid_.mass[e] / node_densest_[e] : real(0);
 }
 
-// The mass of node entry e from particles that are not light, where it can take a share of the
-// light particles' momentum (over 1e-12 of the node's mass, so that the division is safe); else 0.
+// The mass of node entry e from particles that are not light (at the light particles' nodes).
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 auto solver<S, Sh, M, C, ExtraFields, Part>::heavy_mass(std::size_t e) const -> real {
-    const real heavy = grid_.mass[e] - light_mass_[e];
-    return heavy > real(1e-12) * grid_.mass[e] ? heavy : real(0);
+    return node_heavy_mass_[e];
 }
 
 // A light particle's velocity gradient (instead of sum_i v_i (x) G_ip):
@@ -128,13 +143,13 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::light_velocity_gradient(std::size_t
 // Before the grid-to-particle pass, on one thread in index order: each light particle p takes
 // v_p' = sum_i S_ip k_i v_i / sum_i S_ip k_i (the nodes' velocities after the grid update) as its
 // velocity and for its position update. Its momentum change against FLIP, D_p = m_p (v_p' - v_p^FLIP),
-// is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass) and
+// (with the damping blend, against the blended velocity) is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass) and
 // summed per node in light_momentum_; grid_to_particles hands -light_momentum_ to the node's
 // non-light particles in proportion to S_iq m_q. The kinetic energy this changes is not booked
 // as heat, as the contact policies do not book theirs (docs/equations.md, "Light particles", says
 // why and how much). Its FLIP velocity is the one grid_to_particles would give it, with its light
 // nodes' forces. A light particle none of whose nodes has non-light mass keeps its FLIP velocity
-// (there is nothing to return its momentum to); it is marked 2 in light_particle_.
+// (there is nothing to return its momentum to): lightness::light_flip.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::move_light_particles(real dt) {
     auto& x = particles_.template column<fields::position>();
@@ -142,13 +157,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::move_light_particles(real dt) {
     const auto& m = particles_.template column<fields::mass>();
     light_momentum_.assign(grid_.entries(), vector::Zero());
     for (std::size_t p : light_list_) {
-        vector v_flip = v[p], v_read = vector::Zero();
+        vector v_flip = v[p], v_read = vector::Zero(), old = vector::Zero();
         real k_sum = 0, heavy_sum = 0;
         bool light_node = false;
         auto at = entries(p);
         stencils_[p].for_each([&](std::size_t node, real w, const vector& g) {
             const std::size_t e = at(node);
             v_flip += w * (grid_.velocity[e] - grid_.velocity_old[e]);
+            old += w * grid_.velocity_old[e];
             light_node = light_node || on_light_node(e, w, g);
             const real k = reliability(e);
             v_read += w * k * grid_.velocity[e];
@@ -158,11 +174,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::move_light_particles(real dt) {
         if (light_node) v_flip += light_node_change(p, dt);
         if (!(k_sum > 0) || !(heavy_sum > 0)) {
             // Its nodes carry no material but its own: it moves as FLIP moves it.
-            light_particle_[p] = 2;
+            light_particle_[p] = lightness::light_flip;
             continue;
         }
         v_read /= k_sum;
-        const vector D = m[p] * (v_read - v_flip);
+        // Against the velocity the main pass would give it, with the damping blend
+        // v_FLIP - alpha (v_p - S v^n): the blend keeps momentum only summed over all particles.
+        const vector usual = v_flip - real(options_.pic_fraction) * (v[p] - old);
+        const vector D = m[p] * (v_read - usual);
         auto at_share = entries(p);
         stencils_[p].for_each([&](std::size_t node, real w, const vector&) {
             const std::size_t e = at_share(node);

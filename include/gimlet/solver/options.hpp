@@ -33,15 +33,17 @@ struct solver_options {
     /// docs/equations.md, "Light nodes"). In [0, 1e-3].
     double mass_cutoff = 1e-12;
     /// A particle lighter than this fraction of the heaviest particle with a nonzero weight on
-    /// its stencil's nodes (in its own field) is a light particle: it takes the velocity of its
-    /// nodes weighted by how much of the densest material each carries, and its velocity
+    /// the nodes where it has one (in its own field) is a light particle: it takes the velocity
+    /// of its nodes weighted by how much of the densest material each carries, and its velocity
     /// gradient the same way, and the momentum that changes goes back to the other particles
-    /// of its nodes, so momentum stays exact and the kinetic energy it removes becomes its
-    /// internal energy (docs/equations.md, "Light particles"). Without it such a particle is
-    /// flung by the accelerations of its heavy neighbours' edge nodes. Mass ratios above it
-    /// (two materials in one field, densities a few times apart) are left to the transfer as
-    /// it is. 0 = off. In [0, 0.5]. Nothing of it runs in a scene whose lightest particle is
-    /// at least this fraction of its heaviest.
+    /// of its nodes, so momentum stays exact; the kinetic energy it changes is not booked as
+    /// heat (docs/equations.md, "Light particles"). Without it such a particle is flung by the
+    /// accelerations of its heavy neighbours' edge nodes. Mass ratios above it (two materials
+    /// in one field, densities a few times apart) are left to the transfer as it is. It reads
+    /// particle masses, so one material seeded at 5 or more times the particles per cell along
+    /// each axis (2-D) beside a coarser seeding in one field is light too. 0 = off. In [0, 0.5].
+    /// Nothing of it runs in a scene whose lightest particle is at least this fraction of its
+    /// heaviest (of each body, with a multi-field contact).
     double light_particle_ratio = 0.05;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();

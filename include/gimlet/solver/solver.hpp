@@ -225,7 +225,8 @@ public:
         pending_health_.valid = false;
     }
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
-    /// How many particles the last step treated as light (solver_options::light_particle_ratio).
+    /// How many particles the last step found light (solver_options::light_particle_ratio),
+    /// those left to FLIP because no node of theirs had other mass included.
     [[nodiscard]] std::size_t light_particles() const noexcept { return light_list_.size(); }
     /// Wall-clock time per phase of the steps so far (see docs/performance.md).
     [[nodiscard]] const step_timings& timings() const noexcept { return timings_; }
@@ -624,13 +625,19 @@ private:
     std::vector<std::array<std::uint8_t, stencil_type::nodes>> sides_;
     real dt_ = 0;
     // Light particles, this step (light_particles.hpp): none unless light_possible_. Per particle
-    // 1 if light (2 if light but moved by FLIP: no node with non-light mass), the light ones in
-    // index order, and per node entry the heaviest particle, the largest density, the light
-    // particles' mass and the momentum they changed.
+    // its lightness, the light ones in index order, and per node entry the heaviest particle, the
+    // largest density, whether a light particle's stencil holds it, the mass of the particles that
+    // are not light there and the momentum the light ones changed.
+    enum class lightness : std::uint8_t {
+        none,
+        light,       // takes the nodes' reliability-weighted velocity
+        light_flip,  // light, but no node of its has non-light mass: FLIP moves it
+    };
     bool light_possible_ = false;
-    std::vector<std::uint8_t> light_particle_;
+    std::vector<lightness> light_particle_;
     std::vector<std::size_t> light_list_;
-    std::vector<real> node_heaviest_, node_densest_, light_mass_;
+    std::vector<real> node_heaviest_, node_densest_, node_heavy_mass_;
+    std::vector<std::uint8_t> near_light_;
     std::vector<vector> light_momentum_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;

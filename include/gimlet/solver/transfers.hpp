@@ -209,7 +209,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, boo
     };
     auto update = [&](std::size_t i) {
         const auto& st = stencils_[i];
-        if (Lights && light_particle_[i] == 1) {
+        if (Lights && light_particle_[i] == lightness::light) {
             if (remap) scatter_momentum(i);
             return;
         }
@@ -249,7 +249,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, boo
             v[i] = v_flip - alpha * d;
             energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
         }
-        if (Lights && !light_particle_[i]) {
+        if (Lights && light_particle_[i] == lightness::none) {
             // Its share of the momentum the light particles changed at its nodes:
             // dv_q = -sum_i S_iq P_i / m_i^N (docs/equations.md, "Light particles").
             vector back = vector::Zero();
