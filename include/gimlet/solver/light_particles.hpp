@@ -142,9 +142,10 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::light_velocity_gradient(std::size_t
 
 // Before the grid-to-particle pass, on one thread in index order: each light particle p takes
 // v_p' = sum_i S_ip k_i v_i / sum_i S_ip k_i (the nodes' velocities after the grid update) as its
-// velocity and for its position update. Its momentum change against FLIP, D_p = m_p (v_p' - v_p^FLIP),
-// (with the damping blend, against the blended velocity) is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass) and
-// summed per node in light_momentum_; grid_to_particles hands -light_momentum_ to the node's
+// velocity and for its position update. Its momentum change against the velocity the main pass
+// would give it, D_p = m_p (v_p' - v_p^FLIP + alpha d_p) (FLIP with the damping blend), is split
+// over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass) and summed
+// per node in light_momentum_; grid_to_particles hands -light_momentum_ to the node's
 // non-light particles in proportion to S_iq m_q. The kinetic energy this changes is not booked
 // as heat, as the contact policies do not book theirs (docs/equations.md, "Light particles", says
 // why and how much). Its FLIP velocity is the one grid_to_particles would give it, with its light

@@ -23,7 +23,9 @@ struct solver_options {
     update_scheme scheme = update_scheme::musl;
     /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP, and
     /// nothing of the blend is computed). The kinetic energy the blend removes goes into the
-    /// particles' internal energy, exactly in sum (docs/equations.md, "Damping transfer").
+    /// particles' internal energy, exactly in sum (docs/equations.md, "Damping transfer"; where
+    /// particles are light, light_particle_ratio, they take no blend and no share of its heat,
+    /// and the sum is short by their part).
     double pic_fraction = 0.0;
     /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
     double cfl = 0.4;
@@ -40,8 +42,8 @@ struct solver_options {
     /// heat (docs/equations.md, "Light particles"). Without it such a particle is flung by the
     /// accelerations of its heavy neighbours' edge nodes. Mass ratios above it (two materials
     /// in one field, densities a few times apart) are left to the transfer as it is. It reads
-    /// particle masses, so one material seeded at 5 or more times the particles per cell along
-    /// each axis (2-D) beside a coarser seeding in one field is light too. 0 = off. In [0, 0.5].
+    /// particle masses, so one material seeded at 5 (2-D) or 3 (3-D) or more times the
+    /// particles per cell along each axis beside a coarser seeding in one field is light too. 0 = off. In [0, 0.5].
     /// Nothing of it runs in a scene whose lightest particle is at least this fraction of its
     /// heaviest (of each body, with a multi-field contact).
     double light_particle_ratio = 0.05;
