@@ -621,21 +621,52 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
         }
     }
     SECTION("light particles inside a body with a field per body (distance contact)") {
-        // Every 16th particle of the block made a millionth of the others' mass and volume (its
-        // density, and so its wave speed, unchanged), changed through particles() before the
-        // first step: lightness, the maxima and the return then work within the block's field.
+        // Every 16th particle of the block made 2 % of the others' mass, its volume kept (so
+        // of 2 % of their density, a material the block does not have; its wave speed 7 times
+        // theirs, so 5 us only), changed through particles() before the first step: lightness,
+        // the maxima and the return then work within the block's field.
         auto sol = make_cloud<gimlet::contact::distance>(1e-12);
         auto& ps = sol.particles();
         auto& mass = ps.template column<gimlet::fields::mass>();
-        auto& volume = ps.template column<gimlet::fields::volume0>();
         const auto& body = ps.template column<gimlet::fields::body>();
         std::size_t changed = 0;
         for (std::size_t i = 0; i < mass.size(); i += 16)
-            if (body[i] == 0) mass[i] *= 1e-6, volume[i] *= 1e-6, ++changed;
+            if (body[i] == 0) mass[i] *= 0.02, ++changed;
         REQUIRE(changed == 16);
-        const auto [r, light] = run(std::move(sol), "light particles in the block, distance");
-        CHECK(light > 0);
-        CHECK(r.max_speed < 5 * fragment_speed);
+        record r;
+        r.name = "light particles in the block, distance";
+        r.momentum_scale = fragment_momentum();
+        std::size_t light = 0;
+        gimlet::diagnostics::every_steps count(1, [&light](const auto& s) { light = std::max(light, s.light_particles()); });
+        run_watched(sol, 5e-6, r, count);
+        print(r);
+        check_invariants(r, 1e-12, 0.02);
+        CHECK(light == 16);
+    }
+    SECTION("one material seeded finely beside coarsely is never light") {
+        // Particles of one material at 5 x 5 and 1 per cell (a mass ratio of 1/25) in one field:
+        // lightness compares densities, so none is light. (A mass test made the fine ones light,
+        // and the treatment then removed 9-16 % of the energy of the two blocks' impact, where
+        // nothing is flung without it: docs/equations.md.)
+        gimlet::grid_spec<S> gs;
+        gs.lower = S::vector::Zero();
+        gs.upper = S::vector(12 * cloud_cell, 8 * cloud_cell);
+        gs.cell = cloud_cell;
+        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+        gimlet::scene::scene<S, elastic> sc(gs);
+        const auto steel = gimlet::make_elastic_material(steel_density, steel_young, steel_nu);
+        sc.add_body(gimlet::scene::box<S>(S::vector(2 * cloud_cell, 2 * cloud_cell), S::vector(6 * cloud_cell, 6 * cloud_cell)), steel,
+                    S::vector(150, 0), 5, "fine");
+        sc.add_body(gimlet::scene::box<S>(S::vector(6 * cloud_cell, 2 * cloud_cell), S::vector(10 * cloud_cell, 6 * cloud_cell)), steel,
+                    S::vector(-150, 0), 1, "coarse");
+        cloud_solver<> sol(sc, one_thread());
+        const auto& mass = sol.particles().template column<gimlet::fields::mass>();
+        REQUIRE(*std::min_element(mass.begin(), mass.end()) < 0.05 * *std::max_element(mass.begin(), mass.end()));
+        std::size_t light = 0;
+        gimlet::diagnostics::every_steps count(1, [&light](const auto& s) { light = std::max(light, s.light_particles()); });
+        sol.run_until(2e-6, count);
+        CHECK(sol.steps() > 10);
+        CHECK(light == 0);
     }
     SECTION("a field per body (distance contact): light bodies meet heavy ones through the contact") {
         // Each single particle is a body, alone in its field, so none is ever light: the contact

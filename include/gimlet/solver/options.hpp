@@ -34,18 +34,18 @@ struct solver_options {
     /// and it goes back to the particles that exerted it, so momentum stays exact (see
     /// docs/equations.md, "Light nodes"). In [0, 1e-3].
     double mass_cutoff = 1e-12;
-    /// A particle lighter than this fraction of the heaviest particle with a nonzero weight on
-    /// the nodes where it has one (in its own field) is a light particle: it takes the velocity
-    /// of its nodes weighted by how much of the densest material each carries, and its velocity
-    /// gradient the same way, and the momentum that changes goes back to the other particles
-    /// of its nodes, so momentum stays exact; the kinetic energy it changes is not booked as
-    /// heat (docs/equations.md, "Light particles"). Without it such a particle is flung by the
-    /// accelerations of its heavy neighbours' edge nodes. Mass ratios above it (two materials
-    /// in one field, densities a few times apart) are left to the transfer as it is. It reads
-    /// particle masses, so one material seeded at 5 (2-D) or 3 (3-D) or more times the
-    /// particles per cell along each axis beside a coarser seeding in one field is light too. 0 = off. In [0, 0.5].
-    /// Nothing of it runs in a scene whose lightest particle is at least this fraction of its
-    /// heaviest (of each body, with a multi-field contact).
+    /// A particle whose material is less dense than this fraction of the densest material with
+    /// a nonzero weight on the nodes where it has one (in its own field; reference densities,
+    /// m / V0) is a light particle: it takes the velocity of its nodes weighted by how much of
+    /// the densest material each carries, and its velocity gradient the same way, and the
+    /// momentum that changes goes back to the other particles of its nodes, so momentum stays
+    /// exact; the kinetic energy it changes is not booked as heat (docs/equations.md, "Light
+    /// particles"). Without it such a particle is flung by the accelerations of its dense
+    /// neighbours' edge nodes. Density ratios above it (two materials in one field, densities a
+    /// few times apart) are left to the transfer as it is, and particles of one material are
+    /// never light against each other, whatever their sizes. 0 = off. In [0, 0.5]. Nothing of it
+    /// runs in a scene whose least dense material is at least this fraction of its densest (of
+    /// each body, with a multi-field contact, so never where each body has one material).
     double light_particle_ratio = 0.05;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();

@@ -475,6 +475,7 @@ private:
     void sort_by_cell();
 
     // Light particles (light_particles.hpp; solver_options::light_particle_ratio).
+    [[nodiscard]] real reference_density(std::size_t i) const;
     void check_light_possible();
     void find_light_particles();
     [[nodiscard]] real reliability(std::size_t e) const;
@@ -625,9 +626,9 @@ private:
     std::vector<std::array<std::uint8_t, stencil_type::nodes>> sides_;
     real dt_ = 0;
     // Light particles, this step (light_particles.hpp): none unless light_possible_. Per particle
-    // its lightness, the light ones in index order, and per node entry the heaviest particle, the
-    // largest density, whether a light particle's stencil holds it, the mass of the particles that
-    // are not light there and the momentum the light ones changed.
+    // its lightness, the light ones in index order, and per node entry the largest reference and
+    // current densities, whether a light particle's stencil holds it, the mass of the particles
+    // that are not light there and the momentum the light ones changed.
     enum class lightness : std::uint8_t {
         none,
         light,       // takes the nodes' reliability-weighted velocity
@@ -636,7 +637,7 @@ private:
     bool light_possible_ = false;
     std::vector<lightness> light_particle_;
     std::vector<std::size_t> light_list_;
-    std::vector<real> node_heaviest_, node_densest_, node_heavy_mass_;
+    std::vector<real> node_reference_density_, node_densest_, node_heavy_mass_;
     std::vector<std::uint8_t> near_light_;
     std::vector<vector> light_momentum_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
