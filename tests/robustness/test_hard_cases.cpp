@@ -219,16 +219,21 @@ constexpr double cloud_cell = 1e-3, steel_density = 7800, steel_young = 200e9, s
 /// light_a or light_b > 0, one more single particle each, of steel's wave speed and that fraction
 /// of a fragment's mass: a at lattice point (2, 20) flying at (700, -300) m/s, b at (20, 2) at
 /// (-500, 400) m/s, both across the fragments' paths.
+/// An empty scene on a doubly periodic grid of nx x ny cells of cloud_cell.
+gimlet::scene::scene<S, elastic> periodic_scene(int nx, int ny) {
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(nx * cloud_cell, ny * cloud_cell);
+    gs.cell = cloud_cell;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    return gimlet::scene::scene<S, elastic>(gs);
+}
+
 /// `options` may change the solver options (the cut-off is set before it).
 template <class Contact = gimlet::contact::single_field, class Options = void (*)(gimlet::solver_options<S>&)>
 cloud_solver<Contact> make_cloud(double mass_cutoff, double light_a = 0, double light_b = 0,
                                  Options options = [](gimlet::solver_options<S>&) {}) {
-    gimlet::grid_spec<S> gs;
-    gs.lower = S::vector::Zero();
-    gs.upper = S::vector(24 * cloud_cell, 24 * cloud_cell);
-    gs.cell = cloud_cell;
-    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
-    gimlet::scene::scene<S, elastic> sc(gs);
+    auto sc = periodic_scene(24, 24);
     const auto steel = gimlet::make_elastic_material(steel_density, steel_young, steel_nu);
     sc.add_body(gimlet::scene::box<S>(S::vector(8 * cloud_cell, 8 * cloud_cell), S::vector(16 * cloud_cell, 16 * cloud_cell)),
                 steel, S::vector::Zero(), 2, "block");
@@ -648,12 +653,7 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
         // lightness compares densities, so none is light. (A mass test made the fine ones light,
         // and the treatment then removed 9-16 % of the energy of the two blocks' impact, where
         // nothing is flung without it: docs/equations.md.)
-        gimlet::grid_spec<S> gs;
-        gs.lower = S::vector::Zero();
-        gs.upper = S::vector(12 * cloud_cell, 8 * cloud_cell);
-        gs.cell = cloud_cell;
-        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
-        gimlet::scene::scene<S, elastic> sc(gs);
+        auto sc = periodic_scene(12, 8);
         const auto steel = gimlet::make_elastic_material(steel_density, steel_young, steel_nu);
         sc.add_body(gimlet::scene::box<S>(S::vector(2 * cloud_cell, 2 * cloud_cell), S::vector(6 * cloud_cell, 6 * cloud_cell)), steel,
                     S::vector(150, 0), 5, "fine");
