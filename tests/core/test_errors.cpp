@@ -129,6 +129,17 @@ TEST_CASE("numerical trouble names particle, position and step", "[core][errors]
         sol2.particles().column<gimlet::fields::velocity>()[7] = S::vector(std::numeric_limits<double>::quiet_NaN(), 0.0);
         CHECK_THROWS_WITH(sol2.step(1e-6), Contains("step 0") && Contains("particle 7 ") && Contains("velocity is not finite"));
     }
+    SECTION("a mass or initial volume set to zero or NaN between steps") {
+        // Both divide (densities, volumes, and the light particles' reference density m / V0).
+        for (const double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+            elastic_solver sol(one_block(gimlet::boundary::periodic));
+            sol.particles().column<gimlet::fields::mass>()[5] = bad;
+            CHECK_THROWS_WITH(sol.step(1e-6), Contains("particle 5 ") && Contains("mass = ") && Contains("not finite and > 0"));
+            elastic_solver sol2(one_block(gimlet::boundary::periodic));
+            sol2.particles().column<gimlet::fields::volume0>()[3] = bad;
+            CHECK_THROWS_WITH(sol2.step(1e-6), Contains("particle 3 ") && Contains("volume0") && Contains("not finite and > 0"));
+        }
+    }
     SECTION("an inverted particle (time step far beyond the CFL limit)") {
         gimlet::scene::scene<S, gimlet::elastic_material> sc(unit_grid());
         const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);

@@ -89,9 +89,14 @@ template <class P, Space S>
            p.template get<fields::deformation_gradient>().determinant() > 0 && g.inside(x);
 }
 
-/// Why a particle stops the run (non-finite values, inverted, off the grid), or empty.
+/// Why a particle stops the run (non-finite values, inverted, off the grid), or empty. Mass
+/// and initial volume never change in a step, so only this check (of a scene's particles and of
+/// particles changed between steps) reads them, and not particle_healthy.
 template <class P, Space S>
 [[nodiscard]] std::string particle_problem(const P& p, const grid<S>& g) {
+    const double m = double(p.template get<fields::mass>()), v0 = double(p.template get<fields::volume0>());
+    if (!(std::isfinite(m) && m > 0)) return "mass = " + detail::to_text(m) + " is not finite and > 0";
+    if (!(std::isfinite(v0) && v0 > 0)) return "volume0 (initial volume) = " + detail::to_text(v0) + " is not finite and > 0";
     const auto& x = p.template get<fields::position>();
     if (!x.allFinite()) return "position is not finite";
     if (!p.template get<fields::velocity>().allFinite()) return "velocity is not finite";
