@@ -42,6 +42,40 @@ TEST_CASE("float: two elastic disks collide and part", "[core][float]") {
     CHECK(worst_de < 0.06);      // the double-precision bound (tests/core/test_conservation.cpp)
 }
 
+TEST_CASE("float: light particles return their momentum exactly", "[core][float]") {
+    // The two disks with a small third one between them, of a thousandth of their density and
+    // stiffness (the same wave speed): its particles are light (solver_options::
+    // light_particle_ratio) once the disks reach it. The momentum they change goes back to the
+    // disks' particles over the non-light mass, summed (not m_i less the light mass, whose
+    // rounding in float would be of the light mass's size).
+    gimlet::grid_spec<F> gs;
+    gs.upper = F::vector(1.0f, 1.0f);
+    gs.cell = 0.05f;
+    gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
+    gimlet::scene::scene<F, gimlet::elastic_material> sc(gs);
+    const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);
+    sc.add_body(gimlet::scene::ball<F>(F::vector(0.25f, 0.25f), 0.2f), mat, F::vector(0.1f, 0.1f), 2);
+    sc.add_body(gimlet::scene::ball<F>(F::vector(0.75f, 0.75f), 0.2f), mat, F::vector(-0.1f, -0.1f), 2);
+    sc.add_body(gimlet::scene::ball<F>(F::vector(0.5f, 0.5f), 0.06f), gimlet::make_elastic_material(1.0, 1.0, 0.3), F::vector(0.0f, 0.0f), 2);
+    gimlet::solver_options<F> opt;
+    opt.threads = 1;
+    gimlet::solver<F, gimlet::shape::ugimp, gimlet::elastic_material> sol(sc, opt);
+    const auto first = gimlet::diagnostics::sample_conservation(sol);
+    double worst_dp = 0, fastest = 0;
+    std::size_t light = 0;
+    const double body_momentum = 0.5 * first.mass * 0.1 * std::sqrt(2.0);
+    gimlet::diagnostics::every_steps watch(1, [&](const auto& s) {
+        const auto c = gimlet::diagnostics::sample_conservation(s);
+        worst_dp = std::max(worst_dp, double((c.momentum - first.momentum).norm()) / body_momentum);
+        for (const auto& v : s.particles().template column<gimlet::fields::velocity>()) fastest = std::max(fastest, double(v.norm()));
+        light = std::max(light, s.light_particles());
+    });
+    sol.run_until(1.2f, watch);
+    std::printf("float light particles: up to %zu light, momentum %.1e of a disk's, fastest %.3f m/s\n", light, worst_dp, fastest);
+    CHECK(light > 0);
+    CHECK(worst_dp < 1e-5);  // as the two disks alone
+}
+
 TEST_CASE("float: an HMX impact with plasticity, the EOS, viscosity and temperature", "[core][float]") {
     using hmx = gimlet::materials::hmx_material<>;
     gimlet::grid_spec<F> gs;
