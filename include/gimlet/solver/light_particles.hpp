@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The solver's treatment of particles far lighter than their neighbours
-/// (solver_options::light_particle_ratio; docs/equations.md, "Light particles").
+/// The solver's treatment of particles far less dense than their neighbours ("light particles";
+/// solver_options::light_particle_ratio; docs/equations.md, "Light particles").
 ///
-/// Where a heavy particle has a tiny weight S at a node, the node's velocity increment
+/// Where a dense particle has a tiny weight S at a node, the node's velocity increment
 /// dt f_i / m_i grows as 1/sqrt(S) (GIMP's gradient at the edge of a support is not small where
-/// the weight is). The heavy particle reads it with weight S, harmlessly; a much lighter particle
-/// on the same node reads it with weight O(1) and is flung (52-115 km/s in the sparse-cloud hard
+/// the weight is). The dense particle reads it with weight S, harmlessly; a far less dense
+/// particle on the same node reads it with weight O(1) and is flung (52-115 km/s in the sparse-cloud hard
 /// case, det F down to 0). A light particle therefore reads each node by its reliability
 /// k_i = m_i / rho_i^max (the volume of the node's densest material its mass amounts to), for
 /// its velocity and for its velocity gradient, and the momentum it changes against FLIP goes back

@@ -37,7 +37,7 @@ template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList Ex
 void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
     matrix L = matrix::Zero();
-    if (!light_list_.empty() && light_particle_[i] != lightness::none) {
+    if (is_light(i)) {
         L = light_velocity_gradient(i, vg);
     } else {
         auto at = entries(i);
@@ -104,7 +104,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std:
     cell_volume_.assign(n, real(0));
     for_each_particle_by_slab([&](std::size_t i) {
         real rate = 0;
-        if (!light_list_.empty() && light_particle_[i] != lightness::none) {
+        if (is_light(i)) {
             rate = light_velocity_gradient(i, vg).trace();
         } else {
             auto at = entries(i);

@@ -480,6 +480,8 @@ private:
     void find_light_particles();
     [[nodiscard]] real reliability(std::size_t e) const;
     [[nodiscard]] real heavy_mass(std::size_t e) const;
+    // Whether particle i is light this step (light_particle_ is only current when the list is not empty).
+    [[nodiscard]] bool is_light(std::size_t i) const { return !light_list_.empty() && light_particle_[i] != lightness::none; }
     [[nodiscard]] matrix light_velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
     void move_light_particles(real dt);
 
@@ -577,7 +579,7 @@ private:
     void check_pending() {
         if (!state_touched_) return;
         check_particles();
-        check_light_possible();  // the masses may have changed
+        check_light_possible();  // the masses or volumes may have changed
         state_touched_ = false;
     }
 
