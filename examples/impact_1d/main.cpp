@@ -6,8 +6,11 @@
 //
 //   impact_1d [--velocity 300] [--cell 0.1] [--end-us 3] [--scheme usf|musl|usl]
 //             [--contact single|distance] [--volumetric-average off|on] [--pic-fraction 0]
-//             [--viscosity-linear 0.06] [--viscosity-quadratic 1.2] [--threads 0]
+//             [--viscosity-linear 0.06] [--viscosity-quadratic 1.2] [--consistent-mass 0] [--threads 0]
 //             [--output results/impact_1d]
+//
+// --consistent-mass K takes K iterations towards the consistent mass matrix's grid accelerations
+// (solver_options::consistent_mass_iterations; 0, the default, is the lumped mass).
 //
 // --contact distance gives each slab its own velocity field with the paper's distance switch,
 // so the slabs can separate once the release waves from the free ends meet at the interface
@@ -28,7 +31,7 @@ int main(int argc, char** argv) try {
     example::cli args(argc, argv,
                       "usage: impact_1d [--velocity V_m_s] [--cell H_mm] [--end-us T] [--scheme usf|musl|usl] "
                       "[--contact single|distance] [--volumetric-average off|on] [--pic-fraction A] [--viscosity-linear B1] "
-                      "[--viscosity-quadratic B2] [--threads N] [--output DIR]");
+                      "[--viscosity-quadratic B2] [--consistent-mass K] [--threads N] [--output DIR]");
     impact_1d::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
@@ -38,6 +41,7 @@ int main(int argc, char** argv) try {
     const std::string contact = args.choice("contact", "single", {"single", "distance"});
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
+    s.consistent_mass = args.integer("consistent-mass", 0, 0, 16);
     const double b1 = args.real("viscosity-linear", 0.06, 0.0, 10.0, true);
     const double b2 = args.real("viscosity-quadratic", 1.2, 0.0, 10.0, true);
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl

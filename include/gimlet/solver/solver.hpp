@@ -457,6 +457,7 @@ private:
     void clear_grid();
     void fill_entries(std::vector<vector>& out, const vector& value);
     void update_grid_momentum(real dt, bool with_old_velocity);
+    void consistent_mass_forces();  // solver/consistent_mass.hpp
     void grid_to_particles(real dt, bool remap);
     template <bool Lights>
     void grid_to_particles_pass(real dt, bool remap);
@@ -642,6 +643,9 @@ private:
     std::vector<real> node_reference_density_, node_densest_, node_heavy_mass_;
     std::vector<std::uint8_t> near_light_;
     std::vector<vector> light_momentum_;
+    // Consistent-mass accelerations (consistent_mass.hpp; solver_options::consistent_mass_iterations):
+    // per node entry the lumped and the iterated accelerations and M a, per particle m_p a_p.
+    std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
@@ -649,6 +653,7 @@ private:
 
 }  // namespace gimlet
 
+#include "gimlet/solver/consistent_mass.hpp"
 #include "gimlet/solver/light_particles.hpp"
 #include "gimlet/solver/particle_passes.hpp"
 #include "gimlet/solver/transfers.hpp"

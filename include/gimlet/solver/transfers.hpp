@@ -104,12 +104,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& o
     for (std::ptrdiff_t k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = value;
 }
 
-// v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), (mv)_i += dt f_i,
+// v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), the forces of the consistent
+// mass if asked (consistent_mass.hpp), (mv)_i += dt f_i,
 // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
 // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
 // particles that exerted it (grid_to_particles).
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
+    consistent_mass_forces();  // solver_options::consistent_mass_iterations; nothing at 0
     const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
     for (std::ptrdiff_t k = 0; k < n; ++k) {

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The grid accelerations of the consistent mass matrix, approximated by k iterations
+/// (solver_options::consistent_mass_iterations; docs/equations.md, "Consistent-mass
+/// accelerations").
+///
+/// MPM divides the nodal forces by the lumped mass m_i = sum_p S_ip m_p. The consistent mass
+/// M_ij = sum_p m_p S_ip S_jp is what the weak form gives; its rows sum to the lumped masses.
+/// With the lumped mass the grid is a dispersive lattice: short waves run slower than long ones,
+/// so a shock trails a train of grid-scale waves (the front overshoot of docs/equations.md).
+/// The consistent mass's dispersion has the opposite sign; solving with it removes that train.
+/// The solve is the iteration
+///   a^(0) = f / m,   a^(j+1) = a^(0) + a^(j) - (M a^(j)) / m,
+/// whose fixed point solves M a = f (the eigenvalues of M_L^-1 M lie in (0, 1], so it
+/// converges); the forces then become m a^(k). The correction m (a^(j) - (M a^(j)) / m) sums to
+/// zero over the nodes (the columns of M sum to the lumped masses), so momentum is kept.
+/// It raises the grid's highest frequency by at most sqrt(k + 1), so the options require
+/// cfl sqrt(k + 1) <= 1.
+
+#include "gimlet/solver/solver.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace gimlet {
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
+    const int iterations = options_.consistent_mass_iterations;
+    if (iterations <= 0) return;
+    const std::size_t ne = grid_.entries();
+    const auto nodes = static_cast<std::ptrdiff_t>(ne);
+    const bool parallel_nodes = nodes >= node_parallel_threshold;
+    cm_first_.resize(ne);
+    cm_accel_.resize(ne);
+    cm_product_.resize(ne);
+    cm_particle_.resize(particles_.size());
+    // a^(0): the lumped accelerations. Light nodes (mass_cutoff) keep their forces and take no
+    // part; a component a fixed or slip wall holds has none (wall_free_).
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
+    for (std::ptrdiff_t k = 0; k < nodes; ++k) {
+        const auto e = static_cast<std::size_t>(k);
+        const real m = grid_.mass[e];
+        cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
+        cm_accel_[e] = cm_first_[e];
+    }
+    const auto& mass = particles_.template column<fields::mass>();
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    for (int it = 0; it < iterations; ++it) {
+        // M a = sum_p S_ip m_p (sum_j S_jp a_j): gather to the particles, then scatter slab by
+        // slab (a fixed summation order whatever the thread count).
+        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            auto at = entries(i);
+            vector ap = vector::Zero();
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { ap += w * cm_accel_[at(node)]; });
+            cm_particle_[i] = mass[i] * ap;
+        }
+        fill_entries(cm_product_, vector::Zero());
+        for_each_particle_by_slab([&](std::size_t i) {
+            auto at = entries(i);
+            const vector mp_ap = cm_particle_[i];
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { cm_product_[at(node)] += w * mp_ap; });
+        });
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
+        for (std::ptrdiff_t k = 0; k < nodes; ++k) {
+            const auto e = static_cast<std::size_t>(k);
+            const real m = grid_.mass[e];
+            if (m > mass_cutoff_)
+                cm_accel_[e] = cm_first_[e] + wall_free_[e].cwiseProduct(cm_accel_[e] - cm_product_[e] / m);
+        }
+    }
+    // f <- f + m (a^(k) - a^(0)): m a^(k) where a component is free, the force as it was where
+    // a wall holds it (the wall then sets that velocity component).
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
+    for (std::ptrdiff_t k = 0; k < nodes; ++k) {
+        const auto e = static_cast<std::size_t>(k);
+        const real m = grid_.mass[e];
+        if (m > mass_cutoff_) grid_.force[e] += m * (cm_accel_[e] - cm_first_[e]);
+    }
+}
+
+}  // namespace gimlet
