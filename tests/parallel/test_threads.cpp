@@ -40,8 +40,10 @@ void check_same(const Solver& one, const Solver& two) {
 
 // With light > 0, a small third disk of that fraction of the others' density sits where they
 // meet: its particles are light (solver_options::light_particle_ratio) once they share nodes.
+// consistent_mass: solver_options::consistent_mass_iterations.
 template <class Contact = gimlet::contact::single_field>
-auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0, double room = 0, double light = 0) {
+auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0, double room = 0, double light = 0,
+           int consistent_mass = 0) {
     gimlet::grid_spec<S> gs;
     gs.lower = -room * S::vector::Ones();
     gs.upper = (1 + room) * S::vector::Ones();
@@ -58,6 +60,7 @@ auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0, dou
     opt.threads = threads;
     opt.scheme = scheme;
     opt.sort_interval = sort_interval;
+    opt.consistent_mass_iterations = consistent_mass;
     gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, Contact> sol(sc, opt);
     sol.run_until(0.2);  // well into the impact
     return sol;
@@ -102,6 +105,14 @@ TEST_CASE("results do not depend on the thread count: a grid large enough for pa
     using gimlet::contact::bardenhagen;
     check_same(disks<bardenhagen>(1, gimlet::update_scheme::musl, 0, 2.0),
                disks<bardenhagen>(2, gimlet::update_scheme::musl, 0, 2.0));
+}
+
+// The consistent mass's gather and slab-ordered scatter, and its node loops on a grid large
+// enough for them to go parallel (solver_options::consistent_mass_iterations).
+TEST_CASE("results do not depend on the thread count: consistent-mass accelerations", "[core][threads]") {
+    using gimlet::contact::bardenhagen;
+    check_same(disks<bardenhagen>(1, gimlet::update_scheme::musl, 0, 2.0, 0, 2),
+               disks<bardenhagen>(2, gimlet::update_scheme::musl, 0, 2.0, 0, 2));
 }
 
 TEST_CASE("results do not depend on the thread count: USL, USF", "[core][threads]") {
