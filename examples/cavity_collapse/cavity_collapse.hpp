@@ -54,6 +54,9 @@ struct settings {
     double hot_spot_radius = 0.75e-3;
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
+    int consistent_mass = 0;         // solver_options::consistent_mass_iterations (0: the lumped mass)
+    double viscosity_linear = 0.06;  // viscosity::bulk's b1 (the Abaqus/Explicit default)
+    double viscosity_quadratic = 1.2;  // viscosity::bulk's b2 (the Abaqus/Explicit default)
     bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
     // Self-contact (multi_field::self_contact): each block's two sides of its closing cavity in
     // separate velocity fields where they meet. Needs a multi-field contact (not single).
@@ -110,7 +113,8 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, M> scene(gs);
     const auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy,
-                                                 typename M::thermal_type>();
+                                                 typename M::thermal_type>(
+        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
     const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
     const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
     const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);

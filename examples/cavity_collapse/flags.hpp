@@ -19,7 +19,8 @@ inline constexpr const char* usage =
     "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
     "[--contact single|bardenhagen|distance] [--self-contact on|off] [--end-us T] [--sample-every-us T] "
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
-    "[--volumetric-average off|on] [--pic-fraction A] [--temperature isentrope|paper] [--threads N] [--quiet] "
+    "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--viscosity-linear B1] "
+    "[--viscosity-quadratic B2] [--temperature isentrope|paper] [--threads N] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
 // The scene's settings from the flags; each refused by name (std::invalid_argument) if out of
@@ -41,6 +42,9 @@ inline settings read_settings(example::cli& args) {
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.75, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
+    s.consistent_mass = args.integer("consistent-mass", 0, 0, 16);
+    s.viscosity_linear = args.real("viscosity-linear", 0.06, 0.0, 10.0, true);
+    s.viscosity_quadratic = args.real("viscosity-quadratic", 1.2, 0.0, 10.0, true);
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
     {
         const std::string list = args.path("snapshots-after-contact-us");

@@ -7,6 +7,7 @@
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
+//                   [--consistent-mass 0] [--viscosity-linear 0.06] [--viscosity-quadratic 1.2]
 //                   [--temperature isentrope|paper] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
@@ -157,7 +158,9 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
             {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
             {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction},
-            {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0}};
+            {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0},
+            {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
+            {"viscosity_quadratic", s.viscosity_quadratic}};
 }
 
 template <class Contact, class Material>
@@ -166,6 +169,7 @@ int run(const settings& s, const run_files& io) {
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
+    opt.consistent_mass_iterations = s.consistent_mass;
     // Self-contact needs several fields per body, so a multi-field contact; off, its partition
     // keeps one field per body and the results are those of multi_field::by_body.
     using partition = std::conditional_t<std::is_same_v<Contact, gimlet::contact::single_field>,
@@ -309,7 +313,8 @@ int run(const settings& s, const run_files& io) {
           "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K";
+          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
+          "consistent_mass,viscosity_linear,viscosity_quadratic";
     for (double dt : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
@@ -323,7 +328,8 @@ int run(const settings& s, const run_files& io) {
        << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
        << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
        << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
-       << mon.bulk_shock_temperature();
+       << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
+       << s.viscosity_quadratic;
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';

@@ -291,7 +291,7 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
         {"consistent mass", with_options([](auto& o) { o.consistent_mass_iterations = 17; }), "consistent_mass_iterations",
          "[0, 16]"},
         {"CFL with the consistent mass", with_options([](auto& o) { o.consistent_mass_iterations = 4, o.cfl = 0.5; }),
-         "cfl (Courant number) with consistent_mass_iterations = 4", "1/sqrt(consistent_mass_iterations + 1)"},
+         "cfl (Courant number, with consistent_mass_iterations = 4)", "1/sqrt(consistent_mass_iterations + 1)"},
         {"maximum time step", with_options([](auto& o) { o.max_time_step = 0.0; }), "max_time_step (s)", "> 0"},
         {"maximum time step", with_options([](auto& o) { o.max_time_step = not_a_number; }), "max_time_step (s)", "> 0"},
         {"body force", with_options([](auto& o) { o.body_force = S::vector(0.0, not_a_number); }), "body_force component (m/s^2)",

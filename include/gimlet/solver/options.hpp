@@ -90,7 +90,7 @@ struct solver_options {
         require(consistent_mass_iterations >= 0 && consistent_mass_iterations <= 16, "consistent_mass_iterations",
                 consistent_mass_iterations, "[0, 16] (0 = lumped mass)");
         require(cfl * std::sqrt(1.0 + consistent_mass_iterations) <= 1.0,
-                "cfl (Courant number) with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations), cfl,
+                "cfl (Courant number, with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations) + ")", cfl,
                 "(0, 1/sqrt(consistent_mass_iterations + 1)]: the consistent mass raises the highest grid frequency by up to that factor");
         require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
         for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
