@@ -10,7 +10,9 @@
 //                      user pays for having it), FLIP, no volumetric averaging
 // Flags: --cell MM (0.5), --steps N (1000 at 0.5 mm; scaled by particle count if omitted),
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
-//        the share of each phase of the step, from solver::timings(), on stderr).
+//        the share of each phase of the step, from solver::timings(), on stderr),
+//        --consistent-mass K (0; solver_options::consistent_mass_iterations, at most 5 at the
+//        default Courant number).
 // Prints one CSV row (header with --header 1).
 #include "common/bench.hpp"
 
@@ -55,11 +57,13 @@ int main(int argc, char** argv) try {
     const int steps = static_cast<int>(f.number("steps", std::min(1000.0, default_steps)));
     const bool header = f.number("header", 0) != 0;
     const bool phases = f.number("phases", 0) != 0;
+    const int consistent_mass = static_cast<int>(f.number("consistent-mass", 0));
     f.finish();
 
     gimlet::solver_options<bench::S2> opt;
     opt.threads = threads;
     opt.scheme = bench::parse_scheme(scheme);
+    opt.consistent_mass_iterations = consistent_mass;
     const double dt = bench::reference_dt(cell);
     row r;
     if (scene == "reference") {

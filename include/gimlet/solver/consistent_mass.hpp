@@ -31,7 +31,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     if (iterations <= 0) return;
     const std::size_t ne = grid_.entries();
     const auto nodes = static_cast<std::ptrdiff_t>(ne);
-    const bool parallel_nodes = nodes >= node_parallel_threshold;
+    [[maybe_unused]] const bool parallel_nodes = nodes >= node_parallel_threshold;  // read by the OpenMP pragmas only
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
