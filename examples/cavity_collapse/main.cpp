@@ -213,7 +213,11 @@ int run(const settings& s, const run_files& io) {
         times << "index,time_us,time_after_contact_us\n";
         pvd.emplace(pvd_path);
     } else {
-        const auto v = gimlet::io::load_checkpoint(io.restart, sol);
+        auto v = gimlet::io::load_checkpoint(io.restart, sol);
+        // Checkpoints written before these flags existed ran with their defaults.
+        v.try_emplace("consistent_mass", 0.0);
+        v.try_emplace("viscosity_linear", 0.06);
+        v.try_emplace("viscosity_quadratic", 1.2);
         for (const auto& [key, mine] : fixed_on_restart(s))
             if (value_of(v, key, io.restart) != mine)
                 throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +

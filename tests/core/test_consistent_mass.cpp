@@ -42,9 +42,9 @@ double frequency_error(int cells_per_wave, int iterations) {
     opt.consistent_mass_iterations = iterations;
     single sol(sc, opt);
     const double k = 2 * pi / (cells_per_wave * h);
-    auto& x = sol.particles().column<gimlet::fields::position>();
-    auto& v = sol.particles().column<gimlet::fields::velocity>();
-    const auto& m = sol.particles().column<gimlet::fields::mass>();
+    auto& x = sol.particles().template column<gimlet::fields::position>();
+    auto& v = sol.particles().template column<gimlet::fields::velocity>();
+    const auto& m = sol.particles().template column<gimlet::fields::mass>();
     for (std::size_t p = 0; p < x.size(); ++p) v[p] = S::vector(v0 * std::sin(k * x[p][0]), 0.0);
     auto amplitude = [&] {
         double a = 0;
@@ -66,9 +66,10 @@ double frequency_error(int cells_per_wave, int iterations) {
     return period / measured - 1;
 }
 
-// Two elastic blocks in their own velocity fields (distance contact), their velocities
-// scrambled, one of them far lighter (its nodes are light nodes), doubly periodic.
-two_field cloud(int iterations) {
+// Two elastic blocks in their own velocity fields (distance contact) or in one, their
+// velocities scrambled, one of them far lighter (its nodes are light nodes), doubly periodic.
+template <class Solver = two_field>
+Solver cloud(int iterations, double mass_cutoff = 1e-12) {
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector::Zero();
     gs.upper = S::vector(16e-3, 10e-3);
@@ -84,16 +85,18 @@ two_field cloud(int iterations) {
     gimlet::solver_options<S> opt;
     opt.threads = 1;
     opt.consistent_mass_iterations = iterations;
-    two_field sol(sc, opt);
-    auto& v = sol.particles().column<gimlet::fields::velocity>();
+    opt.mass_cutoff = mass_cutoff;
+    Solver sol(sc, opt);
+    auto& v = sol.particles().template column<gimlet::fields::velocity>();
     for (std::size_t i = 0; i < v.size(); ++i) v[i] += S::vector(5.0 * std::sin(1.7 * double(i)), 3.0 * std::cos(2.3 * double(i)));
     return sol;
 }
 
-S::vector momentum(const two_field& sol) {
+template <class Solver>
+S::vector momentum(const Solver& sol) {
     S::vector p = S::vector::Zero();
-    const auto& m = sol.particles().column<gimlet::fields::mass>();
-    const auto& v = sol.particles().column<gimlet::fields::velocity>();
+    const auto& m = sol.particles().template column<gimlet::fields::mass>();
+    const auto& v = sol.particles().template column<gimlet::fields::velocity>();
     for (std::size_t i = 0; i < m.size(); ++i) p += m[i] * v[i];
     return p;
 }
@@ -124,33 +127,40 @@ TEST_CASE("consistent mass: the grid's waves run closer to the continuum's speed
         if (i != 1) CHECK(e8[i] / e16[i] < 4.5);
     }
     for (std::size_t i = 1; i < e8.size(); ++i) {
-        CHECK(e8[i] > e8[i - 1]);            // each iteration brings the wave closer to c
-        CHECK(std::abs(e8[i]) < 0.4 * std::abs(e8[0]));  // and less than half the lumped lag
+        if (i <= 3) CHECK(e8[i] > e8[i - 1]);  // 1, 2, 4 iterations: each brings the wave closer to c
+        CHECK(std::abs(e8[i]) < 0.4 * std::abs(e8[0]));  // and leaves at most 0.4 of the lumped lag
     }
-    CHECK(std::abs(e8[4] - e8[3]) < 1e-3 * std::abs(e8[3]));  // converged by 4 iterations
+    CHECK(std::abs(e8[4] - e8[3]) < 1e-3 * std::abs(e8[3]));  // converged by 4 iterations (8 reads the same)
     CHECK(std::abs(e8[4]) < std::abs(e8[0]) / 3);
     CHECK(std::abs(e16[4]) < std::abs(e16[0]) / 3);
 }
 
-TEST_CASE("consistent mass: momentum is kept, with two velocity fields and light nodes", "[core][conservation]") {
-    auto lumped = cloud(0);
-    for (int s = 0; s < 60; ++s) lumped.step();
-    for (const int k : {1, 4}) {
-        auto sol = cloud(k);
-        const S::vector p0 = momentum(sol);
-        double scale = 0;  // sum m |v|
-        const auto& m = sol.particles().column<gimlet::fields::mass>();
-        const auto& v = sol.particles().column<gimlet::fields::velocity>();
-        for (std::size_t i = 0; i < m.size(); ++i) scale += m[i] * v[i].norm();
-        for (int s = 0; s < 60; ++s) sol.step();
-        const S::vector p1 = momentum(sol);
-        INFO("iterations " << k << ": momentum change " << (p1 - p0).norm() / scale);
-        CHECK((p1 - p0).norm() <= 1e-12 * scale);
-        // The correction acted: the blocks met, and the velocities differ from the lumped run's.
-        double differ = 0;
-        for (std::size_t i = 0; i < m.size(); ++i)
-            differ = std::max(differ, (v[i] - lumped.particles().column<gimlet::fields::velocity>()[i]).norm());
-        CHECK(differ > 1.0);
+// With the largest mass cut-off (1e-3 of the heaviest particle) the blocks' edge nodes are
+// light too, inside the stencils of particles that also reach heavy nodes: each particle's share
+// of M a is spread over its heavy nodes alone, or momentum leaks there (it did: 6e-7 to 1e-6 of
+// sum m |v| over 200 steps in one field, before the shares were renormalised).
+TEMPLATE_TEST_CASE("consistent mass: momentum is kept, with light nodes beside heavy ones", "[core][conservation]", two_field,
+                   single) {
+    for (const double cutoff : {1e-12, 1e-3}) {
+        auto lumped = cloud<TestType>(0, cutoff);
+        for (int s = 0; s < 60; ++s) lumped.step();
+        for (const int k : {1, 4}) {
+            auto sol = cloud<TestType>(k, cutoff);
+            const S::vector p0 = momentum(sol);
+            double scale = 0;  // sum m |v|
+            const auto& m = sol.particles().template column<gimlet::fields::mass>();
+            const auto& v = sol.particles().template column<gimlet::fields::velocity>();
+            for (std::size_t i = 0; i < m.size(); ++i) scale += m[i] * v[i].norm();
+            for (int s = 0; s < 60; ++s) sol.step();
+            const S::vector p1 = momentum(sol);
+            INFO("iterations " << k << ", mass cut-off " << cutoff << ": momentum change " << (p1 - p0).norm() / scale);
+            CHECK((p1 - p0).norm() <= 1e-12 * scale);
+            // The correction acted: the blocks met, and the velocities differ from the lumped run's.
+            double differ = 0;
+            for (std::size_t i = 0; i < m.size(); ++i)
+                differ = std::max(differ, (v[i] - lumped.particles().template column<gimlet::fields::velocity>()[i]).norm());
+            CHECK(differ > 1.0);
+        }
     }
 }
 
@@ -174,8 +184,8 @@ TEST_CASE("consistent mass: a uniform acceleration is left as it is", "[core][ve
     const S::vector expected(3.0, -1e6 * t);
     double worst = 0, worst_stress = 0;
     for (std::size_t i = 0; i < sol.particles().size(); ++i) {
-        worst = std::max(worst, (sol.particles().column<gimlet::fields::velocity>()[i] - expected).norm());
-        worst_stress = std::max(worst_stress, sol.particles().column<gimlet::fields::stress>()[i].norm());
+        worst = std::max(worst, (sol.particles().template column<gimlet::fields::velocity>()[i] - expected).norm());
+        worst_stress = std::max(worst_stress, sol.particles().template column<gimlet::fields::stress>()[i].norm());
     }
     INFO("largest velocity error " << worst << " m/s of " << expected.norm() << ", largest stress " << worst_stress << " Pa");
     CHECK(worst <= 1e-12 * expected.norm());

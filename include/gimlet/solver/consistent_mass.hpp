@@ -12,11 +12,15 @@
 /// The consistent mass's dispersion has the opposite sign; solving with it removes that train.
 /// The solve is the iteration
 ///   a^(0) = f / m,   a^(j+1) = a^(0) + a^(j) - (M a^(j)) / m,
-/// whose fixed point solves M a = f (the eigenvalues of M_L^-1 M lie in (0, 1], so it
-/// converges); the forces then become m a^(k). The correction m (a^(j) - (M a^(j)) / m) sums to
-/// zero over the nodes (the columns of M sum to the lumped masses), so momentum is kept.
-/// It raises the grid's highest frequency by at most sqrt(k + 1), so the options require
-/// cfl sqrt(k + 1) <= 1.
+/// whose fixed point solves M a = f where M is regular; the forces then become m a^(k). The
+/// eigenvalues of m^-1 M lie in [0, 1] (non-negative weights; m - M is diagonally dominant):
+/// modes at 1 converge at once, modes near 0 (a support with fewer particles than nodes) grow
+/// like (k + 1) a^(0), never more, so the grid's highest frequency rises by at most
+/// sqrt(k + 1) and the options require cfl sqrt(k + 1) <= 1 (MUSL and USF; not with USL, which
+/// is unstable above a Courant number of about 0.7 already with the lumped mass). The
+/// correction m a^(j) - M a^(j) sums to zero over the nodes (the columns of M sum to the
+/// lumped masses), so momentum is kept; light nodes (mass_cutoff) take no part, and each
+/// particle's share of M a is spread over its other nodes (below) so that this stays exact.
 
 #include "gimlet/solver/solver.hpp"
 
@@ -36,6 +40,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
     cm_particle_.resize(particles_.size());
+    cm_weight_.resize(particles_.size());
     // a^(0): the lumped accelerations. Light nodes (mass_cutoff) keep their forces and take no
     // part; a component a fixed or slip wall holds has none (wall_free_).
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
@@ -55,14 +60,27 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             const auto i = static_cast<std::size_t>(k);
             auto at = entries(i);
             vector ap = vector::Zero();
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { ap += w * cm_accel_[at(node)]; });
+            real heavy = 0;  // the particle's weight on nodes above the mass cut-off
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t e = at(node);
+                ap += w * cm_accel_[e];
+                if (grid_.mass[e] > mass_cutoff_) heavy += w;
+            });
             cm_particle_[i] = mass[i] * ap;
+            cm_weight_[i] = heavy;
         }
         fill_entries(cm_product_, vector::Zero());
+        // Scattered over the nodes above the cut-off only, with the particle's weights there
+        // renormalised to one: sum_i (M a)_i is then sum_p m_p a_p = sum_j m_j a_j exactly, and
+        // the correction keeps momentum where a particle also reaches a light node.
         for_each_particle_by_slab([&](std::size_t i) {
+            if (!(cm_weight_[i] > 0)) return;
             auto at = entries(i);
-            const vector mp_ap = cm_particle_[i];
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) { cm_product_[at(node)] += w * mp_ap; });
+            const vector share = cm_particle_[i] / cm_weight_[i];
+            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t e = at(node);
+                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += w * share;
+            });
         });
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
         for (std::ptrdiff_t k = 0; k < nodes; ++k) {
