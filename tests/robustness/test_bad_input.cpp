@@ -282,6 +282,8 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
         {"CFL", with_options([](auto& o) { o.cfl = 0.0; }), "cfl (Courant number)", "(0, 1]"},
         {"CFL", with_options([](auto& o) { o.cfl = 1.5; }), "cfl (Courant number)", "(0, 1]"},
         {"CFL", with_options([](auto& o) { o.cfl = not_a_number; }), "cfl (Courant number)", "(0, 1]"},
+        {"CFL with USL", with_options([](auto& o) { o.scheme = gimlet::update_scheme::usl, o.cfl = 0.75; }),
+         "cfl (Courant number) with the USL scheme", "(0, 0.7]"},
         {"mass cut-off", with_options([](auto& o) { o.mass_cutoff = 0.1; }), "mass_cutoff", "[0, 1e-3]"},
         {"light particle ratio", with_options([](auto& o) { o.light_particle_ratio = 0.6; }), "light_particle_ratio", "[0, 0.5]"},
         {"light particle ratio", with_options([](auto& o) { o.light_particle_ratio = not_a_number; }), "light_particle_ratio",

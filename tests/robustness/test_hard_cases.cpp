@@ -678,3 +678,48 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
         CHECK(r.max_speed < 5 * fragment_speed);
     }
 }
+
+// Every grid mode at once: a doubly periodic elastic block whose particles' velocities are
+// scrambled, 2000 steps at the largest Courant number each scheme accepts (solver_options: 1,
+// and 0.7 with USL). Kinetic plus internal energy may not grow: it oscillates, because the
+// particles' velocities lag the stress by half a step (by about omega dt / 2 of it, large for
+// the grid's fastest modes at these steps), but an unstable mode grows without bound. Measured:
+// the largest energy over the last 500 steps is that of the first 500 (USL at 0.7 with 1 and 2
+// particles per cell: 1.064 and 1.001 of the start, MUSL and USF at 1: 1.002); USL at 0.72
+// (1 particle per cell) or 0.8 (2) grows it a thousandfold (docs/equations.md, step 6).
+TEST_CASE("hard case: every scheme at its largest accepted Courant number stays stable", "[robustness][hard]") {
+    struct run_case {
+        gimlet::update_scheme scheme;
+        double cfl;
+        int ppc;
+    };
+    for (const auto& c : {run_case{gimlet::update_scheme::usl, 0.7, 1}, run_case{gimlet::update_scheme::usl, 0.7, 2},
+                          run_case{gimlet::update_scheme::musl, 1.0, 2}, run_case{gimlet::update_scheme::usf, 1.0, 2}}) {
+        gimlet::grid_spec<S> gs;
+        gs.lower = S::vector::Zero();
+        gs.upper = S::vector(16e-3, 16e-3);
+        gs.cell = 1e-3;
+        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+        gimlet::scene::scene<S, elastic> sc(gs);
+        sc.add_body(gimlet::scene::box<S>(S::vector::Zero(), gs.upper), gimlet::make_elastic_material(1900, 10e9, 0.3),
+                    S::vector::Zero(), c.ppc, "block");
+        auto opt = one_thread();
+        opt.scheme = c.scheme;
+        opt.cfl = c.cfl;
+        gimlet::solver<S, gimlet::shape::ugimp, elastic> sol(sc, opt);
+        auto& v = sol.particles().column<gimlet::fields::velocity>();
+        for (std::size_t i = 0; i < v.size(); ++i) v[i] = S::vector(std::sin(1.7 * double(i)), std::cos(2.3 * double(i)));
+        const double e0 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
+        double early = 0, late = 0;  // the largest energy over the first and the last 500 steps
+        for (int n = 0; n < 2000; ++n) {
+            sol.step();
+            const double e = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
+            if (n < 500) early = std::max(early, e);
+            if (n >= 1500) late = std::max(late, e);
+        }
+        INFO("scheme " << int(c.scheme) << ", Courant " << c.cfl << ", " << c.ppc << " particles per cell: largest energy "
+                       << early / e0 << " of the start in the first 500 steps, " << late / e0 << " in the last 500");
+        CHECK(late <= 1.01 * early);
+        CHECK(late <= 1.1 * e0);
+    }
+}

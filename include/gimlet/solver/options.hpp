@@ -30,6 +30,7 @@ struct solver_options {
     /// and the sum is short by their part).
     double pic_fraction = 0.0;
     /// Courant number C in (0, 1]: dt = C h / max_p (c_p + |v_p|) (docs/physics.md section 1, step 6).
+    /// At most 0.7 with USL, which turns unstable between 0.70 and 0.72 (MUSL and USF are stable to 1).
     double cfl = 0.4;
     /// Nodes lighter than this fraction of the heaviest particle's mass are light nodes: their
     /// force is never divided by their mass (their velocity stays the mean of their particles'),
@@ -85,6 +86,10 @@ struct solver_options {
     void validate() const {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
         require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
+        // USL is unstable past about 0.707 (docs/physics.md section 1, step 6; docs/equations.md).
+        if (scheme == update_scheme::usl)
+            require(cfl <= 0.7, "cfl (Courant number) with the USL scheme", cfl,
+                    "(0, 0.7] (USL turns unstable between 0.70 and 0.72 in 2-D and 3-D; MUSL and USF are stable to 1)");
         require(mass_cutoff >= 0.0 && mass_cutoff <= 1e-3, "mass_cutoff", mass_cutoff, "[0, 1e-3]");
         require(light_particle_ratio >= 0.0 && light_particle_ratio <= 0.5, "light_particle_ratio",
                 light_particle_ratio, "[0, 0.5] (0 = off)");
