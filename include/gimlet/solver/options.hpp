@@ -86,7 +86,7 @@ struct solver_options {
     void validate() const {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
         require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
-        // USL is unstable past about 0.707 (docs/physics.md section 1, step 6; docs/equations.md).
+        // USL turns unstable past about 0.707 (measured: docs/equations.md, "One explicit step", step 6).
         if (scheme == update_scheme::usl)
             require(cfl <= 0.7, "cfl (Courant number) with the USL scheme", cfl,
                     "(0, 0.7] (USL turns unstable between 0.70 and 0.72 in 2-D and 3-D; MUSL and USF are stable to 1)");

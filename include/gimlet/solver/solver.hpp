@@ -645,9 +645,8 @@ private:
     std::vector<vector> light_momentum_;
     // Consistent-mass accelerations (consistent_mass.hpp; solver_options::consistent_mass_iterations):
     // per node entry the lumped and the iterated accelerations and M a, per particle m_p a_p
-    // and its weight on the nodes above the mass cut-off.
+    // over its weight on the nodes above the mass cut-off.
     std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
-    std::vector<real> cm_weight_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
