@@ -59,6 +59,15 @@ struct solver_options {
     /// cfl sqrt(k + 1) must stay <= 1; MUSL and USF only (USL is refused). 0 = the lumped mass
     /// (the default: nothing runs). In [0, 8] (4 iterations converge on a regular lattice).
     int consistent_mass_iterations = 0;
+    /// Replace each particle's J = det F, before every material update, by the L2 projection of
+    /// the particles' J onto the grid's functions (consistent_mass_iterations iterations of the
+    /// consistent mass), its energy moved along the reference isentrope and the energy that move
+    /// releases returned as heat (docs/equations.md, "Particle-scale state filters", (D)). It
+    /// removes the particle-scale pattern a shock leaves that the grid's forces cannot see (the
+    /// front peak, particles over-compressed in a collapse) and keeps what the grid resolves.
+    /// Needs consistent_mass_iterations >= 1 and a material whose thermal policy provides
+    /// reference_energy(J) (thermal::isentrope_temperature). Off by default.
+    bool volume_filter = false;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();
     /// Body force per unit mass (m/s^2), e.g. gravity.
@@ -102,6 +111,10 @@ struct solver_options {
         require(cfl * std::sqrt(1.0 + consistent_mass_iterations) <= 1.0,
                 "cfl (Courant number, with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations) + ")", cfl,
                 "(0, 1/sqrt(consistent_mass_iterations + 1)]: the consistent mass raises the highest grid frequency by up to that factor");
+        if (volume_filter && consistent_mass_iterations < 1)
+            throw invalid_parameter("volume_filter with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations),
+                                    "true", "false, or consistent_mass_iterations in [1, 8] (the filter's projection "
+                                    "solves with the consistent mass; the lumped one smooths every field over two cells)");
         require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
         for (int d = 0; d < S::dim; ++d) require_finite("body_force component (m/s^2)", double(body_force[d]));
         require(threads >= 0, "threads", threads, ">= 0 (0 = OpenMP default)");

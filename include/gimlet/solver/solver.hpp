@@ -114,6 +114,11 @@ public:
         real heaviest = 0;
         for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
         mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+        if (options_.volume_filter && !has_reference_isentrope)
+            throw invalid_parameter("volume_filter", "true",
+                                    "false for this material: the filter moves each particle's energy along the reference "
+                                    "isentrope, which its thermal policy does not provide (reference_energy(J); "
+                                    "thermal::isentrope_temperature does)");
         check_light_possible();
         if constexpr (multi_field) {
             // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
@@ -395,6 +400,7 @@ private:
         }
         lap(timings_.contact);
         if (options_.volumetric_average) average_volumetric_rates(grid_.velocity);
+        filter_volumes();
         update_material_points(dt, grid_.velocity);
         lap(timings_.material_update);
         if (options_.volumetric_average) average_mean_stress();
@@ -418,6 +424,7 @@ private:
     void end_step(real dt, bool update_materials, phase_clock& lap) {
         if constexpr (multi_field) contact_hook();
         if (update_materials && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
+        if (update_materials) filter_volumes();
         finish_step(dt, update_materials);
         lap(timings_.material_update);
     }
@@ -458,6 +465,12 @@ private:
     void fill_entries(std::vector<vector>& out, const vector& value);
     void update_grid_momentum(real dt, bool with_old_velocity);
     void consistent_mass_forces();  // solver/consistent_mass.hpp
+    void filter_volumes();          // solver/volume_filter.hpp (solver_options::volume_filter)
+    // Whether the material's thermal policy provides the reference isentrope's energy e_s(J)
+    // (thermal::isentrope_temperature does), which the volume filter moves the energy along.
+    static constexpr bool has_reference_isentrope = requires(const typename M::thermal_type& t) {
+        { t.reference_energy(1.0) } -> std::convertible_to<double>;
+    };
     void grid_to_particles(real dt, bool remap);
     template <bool Lights>
     void grid_to_particles_pass(real dt, bool remap);
@@ -647,6 +660,10 @@ private:
     // per node entry the lumped and the iterated accelerations and M a, per particle m_p a_p
     // over its weight on the nodes above the mass cut-off.
     std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
+    // The volume filter (volume_filter.hpp): per node entry the lumped projection of J, the
+    // iterate, M times it (and the losses), the masses as the renormalised weights see them;
+    // per particle the gathered values, a scratch share and the weight on the nodes above the cut-off.
+    std::vector<real> vf_first_, vf_value_, vf_product_, vf_mass_, vf_particle_, vf_share_, vf_heavy_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
@@ -655,6 +672,7 @@ private:
 }  // namespace gimlet
 
 #include "gimlet/solver/consistent_mass.hpp"
+#include "gimlet/solver/volume_filter.hpp"
 #include "gimlet/solver/light_particles.hpp"
 #include "gimlet/solver/particle_passes.hpp"
 #include "gimlet/solver/transfers.hpp"
