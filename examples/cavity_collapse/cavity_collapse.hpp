@@ -55,6 +55,7 @@ struct settings {
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
     int consistent_mass = 0;         // solver_options::consistent_mass_iterations (0: the lumped mass)
+    bool volume_filter = false;      // solver_options::volume_filter (needs consistent_mass >= 1)
     double viscosity_linear = 0.06;  // viscosity::bulk's b1 (the Abaqus/Explicit default)
     double viscosity_quadratic = 1.2;  // viscosity::bulk's b2 (the Abaqus/Explicit default)
     bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s

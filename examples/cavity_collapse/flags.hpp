@@ -19,7 +19,7 @@ inline constexpr const char* usage =
     "usage: cavity_collapse [--velocity V_m_s] [--radius R_mm] [--cell H_mm] "
     "[--contact single|bardenhagen|distance] [--self-contact on|off] [--end-us T] [--sample-every-us T] "
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
-    "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--viscosity-linear B1] "
+    "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--volume-filter off|on] [--viscosity-linear B1] "
     "[--viscosity-quadratic B2] [--temperature isentrope|paper] [--threads N] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
@@ -43,6 +43,7 @@ inline settings read_settings(example::cli& args) {
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     s.consistent_mass = args.integer("consistent-mass", 0, 0, 5);
+    s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
     s.viscosity_linear = args.real("viscosity-linear", 0.06, 0.0, 10.0, true);
     s.viscosity_quadratic = args.real("viscosity-quadratic", 1.2, 0.0, 10.0, true);
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";

@@ -7,7 +7,8 @@
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
-//                   [--consistent-mass 0] [--viscosity-linear 0.06] [--viscosity-quadratic 1.2]
+//                   [--consistent-mass 0] [--volume-filter off|on] [--viscosity-linear 0.06]
+//                   [--viscosity-quadratic 1.2]
 //                   [--temperature isentrope|paper] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
@@ -160,7 +161,7 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction},
             {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0},
             {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
-            {"viscosity_quadratic", s.viscosity_quadratic}};
+            {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0}};
 }
 
 template <class Contact, class Material>
@@ -170,6 +171,7 @@ int run(const settings& s, const run_files& io) {
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
     opt.consistent_mass_iterations = s.consistent_mass;
+    opt.volume_filter = s.volume_filter;
     // Self-contact needs several fields per body, so a multi-field contact; off, its partition
     // keeps one field per body and the results are those of multi_field::by_body.
     using partition = std::conditional_t<std::is_same_v<Contact, gimlet::contact::single_field>,
@@ -218,6 +220,7 @@ int run(const settings& s, const run_files& io) {
         v.try_emplace("consistent_mass", 0.0);
         v.try_emplace("viscosity_linear", 0.06);
         v.try_emplace("viscosity_quadratic", 1.2);
+        v.try_emplace("volume_filter", 0.0);
         for (const auto& [key, mine] : fixed_on_restart(s))
             if (value_of(v, key, io.restart) != mine)
                 throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +
@@ -318,7 +321,7 @@ int run(const settings& s, const run_files& io) {
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
-          "consistent_mass,viscosity_linear,viscosity_quadratic";
+          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter";
     for (double dt : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
@@ -333,7 +336,7 @@ int run(const settings& s, const run_files& io) {
        << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
        << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
        << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
-       << s.viscosity_quadratic;
+       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off");
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';

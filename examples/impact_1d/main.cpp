@@ -6,12 +6,15 @@
 //
 //   impact_1d [--velocity 300] [--cell 0.1] [--end-us 3] [--scheme usf|musl|usl]
 //             [--contact single|distance] [--volumetric-average off|on] [--pic-fraction 0]
-//             [--viscosity-linear 0.06] [--viscosity-quadratic 1.2] [--consistent-mass 0] [--threads 0]
+//             [--viscosity-linear 0.06] [--viscosity-quadratic 1.2] [--consistent-mass 0]
+//             [--volume-filter off|on] [--threads 0]
 //             [--output results/impact_1d]
 //
 // --consistent-mass K takes K iterations towards the consistent mass matrix's grid accelerations
 // (solver_options::consistent_mass_iterations; 0, the default, is the lumped mass; at most 5 at
-// the solver's Courant number 0.4, MUSL and USF only).
+// the solver's Courant number 0.4, MUSL and USF only). --volume-filter on replaces each particle's
+// J by its projection onto the grid before every material update (solver_options::volume_filter;
+// needs --consistent-mass 1 or more).
 //
 // --contact distance gives each slab its own velocity field with the paper's distance switch,
 // so the slabs can separate once the release waves from the free ends meet at the interface
@@ -32,7 +35,7 @@ int main(int argc, char** argv) try {
     example::cli args(argc, argv,
                       "usage: impact_1d [--velocity V_m_s] [--cell H_mm] [--end-us T] [--scheme usf|musl|usl] "
                       "[--contact single|distance] [--volumetric-average off|on] [--pic-fraction A] [--viscosity-linear B1] "
-                      "[--viscosity-quadratic B2] [--consistent-mass K] [--threads N] [--output DIR]");
+                      "[--viscosity-quadratic B2] [--consistent-mass K] [--volume-filter off|on] [--threads N] [--output DIR]");
     impact_1d::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
@@ -43,6 +46,7 @@ int main(int argc, char** argv) try {
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     s.consistent_mass = args.integer("consistent-mass", 0, 0, 5);
+    s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
     const double b1 = args.real("viscosity-linear", 0.06, 0.0, 10.0, true);
     const double b2 = args.real("viscosity-quadratic", 1.2, 0.0, 10.0, true);
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
@@ -61,7 +65,7 @@ int main(int argc, char** argv) try {
            "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
            "plateau_temperature_K,max_temperature_K,cell_mm,scheme,rh_temperature_K,plateau_eta,rh_eta,"
            "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta,pic_fraction,"
-           "viscosity_linear,viscosity_quadratic";
+           "viscosity_linear,viscosity_quadratic,consistent_mass,volume_filter";
     for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
     csv << '\n';
     gimlet::io::exact_numbers(csv);
@@ -72,7 +76,7 @@ int main(int argc, char** argv) try {
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
         << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << b1 << ','
-        << b2;
+        << b2 << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off");
     for (const auto n : r.health.count) csv << ',' << n;
     csv << '\n';
 

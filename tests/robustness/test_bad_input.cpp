@@ -297,7 +297,7 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
         {"CFL with the consistent mass", with_options([](auto& o) { o.consistent_mass_iterations = 4, o.cfl = 0.5; }),
          "cfl (Courant number, with consistent_mass_iterations = 4)", "1/sqrt(consistent_mass_iterations + 1)"},
         {"volume filter without the consistent mass", with_options([](auto& o) { o.volume_filter = true; }),
-         "volume_filter with consistent_mass_iterations = 0", "consistent_mass_iterations in [1, 8]"},
+         "volume_filter (with consistent_mass_iterations = 0)", "consistent_mass_iterations in [1, 8]"},
         {"volume filter on a material without the reference isentrope",
          with_options([](auto& o) { o.volume_filter = true, o.consistent_mass_iterations = 1; }), "volume_filter",
          "thermal::isentrope_temperature"},

@@ -112,7 +112,7 @@ struct solver_options {
                 "cfl (Courant number, with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations) + ")", cfl,
                 "(0, 1/sqrt(consistent_mass_iterations + 1)]: the consistent mass raises the highest grid frequency by up to that factor");
         if (volume_filter && consistent_mass_iterations < 1)
-            throw invalid_parameter("volume_filter with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations),
+            throw invalid_parameter("volume_filter (with consistent_mass_iterations = " + std::to_string(consistent_mass_iterations) + ")",
                                     "true", "false, or consistent_mass_iterations in [1, 8] (the filter's projection "
                                     "solves with the consistent mass; the lumped one smooths every field over two cells)");
         require(max_time_step > 0.0, "max_time_step (s)", max_time_step, "> 0");
