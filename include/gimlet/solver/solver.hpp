@@ -399,8 +399,8 @@ private:
             std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
         }
         lap(timings_.contact);
+        filter_volumes();  // before the cell averages: they weight the rates with the volumes
         if (options_.volumetric_average) average_volumetric_rates(grid_.velocity);
-        filter_volumes();
         update_material_points(dt, grid_.velocity);
         lap(timings_.material_update);
         if (options_.volumetric_average) average_mean_stress();
@@ -423,8 +423,8 @@ private:
     // that updates the material (MUSL, USL) and checks every particle.
     void end_step(real dt, bool update_materials, phase_clock& lap) {
         if constexpr (multi_field) contact_hook();
-        if (update_materials && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
         if (update_materials) filter_volumes();
+        if (update_materials && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
         finish_step(dt, update_materials);
         lap(timings_.material_update);
     }

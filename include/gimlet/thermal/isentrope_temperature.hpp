@@ -100,8 +100,9 @@ public:
     /// e_s(J) (J/kg), the specific energy on the reference isentrope. Throws invalid_parameter
     /// at or beyond the singular compression J = 1 - 1/s.
     [[nodiscard]] double reference_energy(double j) const {
-        require(std::isfinite(j) && j > j_sing(), "J = V/V0 of the reference isentrope", j,
-                "> 1 - 1/s = " + gimlet::detail::to_text(j_sing()));
+        // The message is built only on failure: the volume filter calls this twice per particle and step.
+        if (!(std::isfinite(j) && j > j_sing()))
+            require(false, "J = V/V0 of the reference isentrope", j, "> 1 - 1/s = " + gimlet::detail::to_text(j_sing()));
         return table_->at(*this, j);
     }
 
