@@ -114,13 +114,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     opt.light_particle_ratio = pick(0, 0.5);
     // Drawn last, so the committed corpus (shorter inputs) keeps the lumped mass (0).
     opt.consistent_mass_iterations = in.u8() % 4;
+    opt.volume_filter = in.u8() & 1;  // after it, for the same reason (refused where k = 0)
 
     if (std::getenv("GIMLET_FUZZ_VERBOSE")) {  // to read a finding's parameters
         std::fprintf(stderr,
-                     "grid [%a, %a] x [%a, %a], h %a, bc %d %d; scheme %d cfl %a pic %a cutoff %a light %a va %d cm %d b (%a, %a) %s\n",
+                     "grid [%a, %a] x [%a, %a], h %a, bc %d %d; scheme %d cfl %a pic %a cutoff %a light %a va %d cm %d vf %d b (%a, %a) %s\n",
                      gs.lower[0], gs.upper[0], gs.lower[1], gs.upper[1], h, int(gs.bc[0]), int(gs.bc[1]),
                      int(opt.scheme), opt.cfl, opt.pic_fraction, opt.mass_cutoff, opt.light_particle_ratio,
-                     int(opt.volumetric_average), opt.consistent_mass_iterations,
+                     int(opt.volumetric_average), opt.consistent_mass_iterations, int(opt.volume_filter),
                      opt.body_force[0], opt.body_force[1], distance ? "distance" : "single");
         for (const auto& b : bodies)
             std::fprintf(stderr,
