@@ -12,7 +12,8 @@
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
 //        the share of each phase of the step, from solver::timings(), on stderr),
 //        --consistent-mass K (0; solver_options::consistent_mass_iterations, at most 5 at the
-//        default Courant number).
+//        default Courant number), --volume-filter 1 (solver_options::volume_filter; the hmx
+//        scene only, with --consistent-mass 1 or more).
 // Prints one CSV row (header with --header 1).
 #include "common/bench.hpp"
 
@@ -58,12 +59,14 @@ int main(int argc, char** argv) try {
     const bool header = f.number("header", 0) != 0;
     const bool phases = f.number("phases", 0) != 0;
     const int consistent_mass = static_cast<int>(f.number("consistent-mass", 0));
+    const bool volume_filter = f.number("volume-filter", 0) != 0;
     f.finish();
 
     gimlet::solver_options<bench::S2> opt;
     opt.threads = threads;
     opt.scheme = bench::parse_scheme(scheme);
     opt.consistent_mass_iterations = consistent_mass;
+    opt.volume_filter = volume_filter;
     const double dt = bench::reference_dt(cell);
     row r;
     if (scene == "reference") {
