@@ -662,9 +662,9 @@ private:
     std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
-    // them; per particle the gathered values, the energy released, the weight on the nodes above
-    // the cut-off and the change of e_s.
-    std::vector<real> vf_first_, vf_value_, vf_product_, vf_mass_, vf_particle_, vf_share_, vf_heavy_;
+    // them; per particle the gathered values, the weight on the nodes above the cut-off and the
+    // change of e_s.
+    std::vector<real> vf_first_, vf_value_, vf_product_, vf_mass_, vf_particle_, vf_heavy_;
     std::vector<double> vf_es_change_;
     multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;

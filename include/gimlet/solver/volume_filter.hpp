@@ -69,9 +69,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         vf_product_.resize(nk);
         vf_mass_.resize(nk);
         vf_particle_.resize(particles_.size());
-        vf_share_.resize(particles_.size());
         vf_heavy_.resize(particles_.size());
-        std::vector<real>& share = vf_share_;
         const std::vector<real>& heavy = vf_heavy_;
 
         // Each particle's weight on the nodes above the mass cut-off (the weights below are
@@ -179,31 +177,31 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
             fail(i, "the volume filter projected J = " + detail::to_text(double(F[i].determinant())) + " to " +
                         detail::to_text(double(vf_particle_[i])) + ", which the reference isentrope refuses (" + why + ")");
         }
-        // Apply: F scaled to J_new, e moved along the isentrope; share = the energy released.
+        // Apply: F scaled to J_new, e moved along the isentrope.
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
-            share[i] = 0;
             if (es_change[i] == 0.0) continue;
             const real j_old = F[i].determinant(), j_new = vf_particle_[i];
             F[i] *= std::pow(j_new / j_old, real(1) / real(dim));
             e[i] += real(es_change[i]);
-            share[i] = -mass[i] * real(es_change[i]);
         }
-        // The heat: the releases through the nodes; the node sums of the total's sign, scaled to
-        // the total, back to the particles per unit mass (sum_p m_p heat_p = total exactly).
-        scatter(vf_product_, [&](std::size_t i) { return share[i]; });
-        real total = 0, same_sign = 0;
+        // The heat: each particle's release m_p (e_s(J) - e_s(J_new)) through the nodes; the node
+        // sums of the total's sign, scaled to the total, back to the particles per unit mass
+        // (sum_p m_p heat_p = total exactly).
+        scatter(vf_product_, [&](std::size_t i) { return -mass[i] * real(es_change[i]); });
+        real total = 0;
         for (std::size_t j = 0; j < nk; ++j) total += vf_product_[j];
+        auto counted = [&](real node_sum) { return node_sum != 0 && (node_sum > 0) == (total > 0); };
+        real same_sign = 0;
         for (std::size_t j = 0; j < nk; ++j)
-            if ((vf_product_[j] > 0) == (total > 0) && vf_product_[j] != 0) same_sign += vf_product_[j];
+            if (counted(vf_product_[j])) same_sign += vf_product_[j];
         if (total == 0 || same_sign == 0) return;
         const real scale = total / same_sign;
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
         for (std::ptrdiff_t k = 0; k < keys; ++k) {
             const auto j = static_cast<std::size_t>(k);
-            const bool used = vf_mass_[j] > 0 && (vf_product_[j] > 0) == (total > 0) && vf_product_[j] != 0;
-            vf_value_[j] = used ? vf_product_[j] * scale / vf_mass_[j] : real(0);
+            vf_value_[j] = vf_mass_[j] > 0 && counted(vf_product_[j]) ? vf_product_[j] * scale / vf_mass_[j] : real(0);
         }
         gather(vf_value_, [&](std::size_t) { return real(0); });
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))

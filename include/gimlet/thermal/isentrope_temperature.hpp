@@ -102,7 +102,8 @@ public:
     [[nodiscard]] double reference_energy(double j) const {
         // The message is built only on failure: the volume filter calls this twice per particle and step.
         if (!(std::isfinite(j) && j > j_sing()))
-            require(false, "J = V/V0 of the reference isentrope", j, "> 1 - 1/s = " + gimlet::detail::to_text(j_sing()));
+            throw invalid_parameter("J = V/V0 of the reference isentrope", gimlet::detail::to_text(j),
+                                    "> 1 - 1/s = " + gimlet::detail::to_text(j_sing()));
         return table_->at(*this, j);
     }
 
