@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// An independent reference for the strengthless slab release (docs/equations.md, "Release keeps
+// the entropy"): a 1-D Lagrangian hydrocode, von Neumann-Richtmyer's staggered scheme (von
+// Neumann & Richtmyer 1950, J. Appl. Phys. 21; Wilkins, "Computer Simulation of Dynamic
+// Phenomena", 1999, ch. 2), on the same Mie-Grueneisen EOS and reference-isentrope temperature
+// as the library, for the symmetric impact of two slabs that part when the plane between them
+// would pull. No grid, no particles, no transfers: what differs from the MPM run is the method.
+//
+// Only the upper slab is computed; the impact plane is a wall that pushes and never pulls (by
+// symmetry, the lower slab). Nodes carry velocities (leapfrog), cells carry J, e and P:
+//   a_i = (sigma_{i} - sigma_{i-1}) / m_i, sigma = -(P + q)                        (momentum)
+//   e^{n+1} = e^n - ((P^n + P^{n+1}) / 2 + q) (V^{n+1} - V^n)                       (energy,
+//     second order in time; P^{n+1} = P_H + Gamma rho (e^{n+1} - e_H) is linear in e^{n+1},
+//     so the update is solved in closed form)
+//   q = rho (C_Q^2 du^2 - C_L c0 du) where the cell compresses (du < 0), else 0.
+// It converges: at 400 and 1600 cells over 10 mm the medians below agree within 0.03 %.
+
+#include <gimlet/gimlet.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace lagrangian_1d {
+
+struct settings {
+    double velocity = 500.0;  // m/s, each slab
+    int cells = 400;          // over the slab
+    double length = 10e-3;    // m
+    double exclude = 0.5e-3;  // m: the medians skip cells this close to either face
+    double quadratic = 2.0;   // C_Q
+    double linear = 0.1;      // C_L
+};
+
+struct sample {
+    double time = 0;           // s
+    double theta = 0;          // median T / T_s(J) over the interior
+    double heating = 0;        // median T - T0 (K) over the interior
+    double lower_face = 0;     // m, the impact-plane face (0 until the slabs part)
+};
+
+// The strengthless Rankine-Hugoniot state of the symmetric impact at v (U_s = c0 + s u_p, u_p = v):
+// its theta = T_H / T_s(J_H), which an isentropic release keeps.
+inline double hugoniot_theta(double v, const gimlet::materials::hmx_constants& c = {}) {
+    const gimlet::thermal::isentrope_temperature th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
+                                                    c.temperature};
+    const double eta = v / (c.sound_speed + c.slope * v), j = 1.0 - eta;
+    return th.temperature(j, 0.5 * v * v) / th.isentrope(j);  // e_H = u_p^2 / 2
+}
+
+// Runs to the last of `times` (s, increasing) and returns one sample at each.
+inline std::vector<sample> run(const settings& s, const std::vector<double>& times,
+                               const gimlet::materials::hmx_constants& c = {}) {
+    const gimlet::eos::mie_gruneisen<> eos{c.density, c.sound_speed, c.slope, c.gruneisen};
+    const gimlet::thermal::isentrope_temperature th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
+                                                    c.temperature};
+    const int n = s.cells;
+    const double dx0 = s.length / n, rho0 = c.density, m = rho0 * dx0;
+    std::vector<double> x(n + 1), u(n + 1, -s.velocity), J(n, 1.0), e(n, 0.0), P(n, 0.0), q(n, 0.0);
+    for (int i = 0; i <= n; ++i) x[i] = i * dx0;
+    // Courant 0.2 on the fastest sound speed these runs reach (about 4.3 km/s at 700 m/s).
+    const double dt = 0.2 * dx0 / 4500.0;
+    std::vector<sample> out;
+    double t = 0;
+    std::vector<double> theta, heating;
+    for (double until : times) {
+        while (t < until - 0.5 * dt) {
+            for (int i = 0; i <= n; ++i) {
+                const double above = i < n ? -(P[i] + q[i]) : 0.0, below = i > 0 ? -(P[i - 1] + q[i - 1]) : 0.0;
+                u[i] += dt * (above - below) / ((i == 0 || i == n) ? 0.5 * m : m);
+            }
+            if (x[0] + u[0] * dt < 0.0) u[0] = -x[0] / dt;  // the wall pushes, never pulls
+            for (int i = 0; i <= n; ++i) x[i] += u[i] * dt;
+            for (int k = 0; k < n; ++k) {
+                const double j1 = (x[k + 1] - x[k]) / dx0, dv = (j1 - J[k]) / rho0, du = u[k + 1] - u[k];
+                const double rho = rho0 / (0.5 * (j1 + J[k]));
+                q[k] = du < 0 ? rho * (s.quadratic * s.quadratic * du * du - s.linear * c.sound_speed * du) : 0.0;
+                const double g1 = c.gruneisen * rho0 / j1;
+                e[k] = (e[k] - (0.5 * (P[k] + eos.hugoniot_pressure(j1) - g1 * eos.hugoniot_energy(j1)) + q[k]) * dv) /
+                       (1.0 + 0.5 * g1 * dv);
+                J[k] = j1;
+                P[k] = eos.hugoniot_pressure(j1) + g1 * (e[k] - eos.hugoniot_energy(j1));
+            }
+            t += dt;
+        }
+        theta.clear();
+        heating.clear();
+        for (int k = 0; k < n; ++k) {
+            const double y = 0.5 * (x[k] + x[k + 1]);
+            if (y < x[0] + s.exclude || y > x[n] - s.exclude) continue;
+            const double temperature = th.temperature(J[k], e[k]);
+            theta.push_back(temperature / th.isentrope(J[k]));
+            heating.push_back(temperature - c.temperature);
+        }
+        auto median = [](std::vector<double>& v) {
+            std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+            return v[v.size() / 2];
+        };
+        out.push_back({t, median(theta), median(heating), x[0]});
+    }
+    return out;
+}
+
+}  // namespace lagrangian_1d
