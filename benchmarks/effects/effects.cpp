@@ -30,11 +30,9 @@ struct hmx_parts {
 
 template <class Contact, class M, class Part = gimlet::multi_field::by_body>
 void run(const char* name, const M& mat, double cell, int steps, int repeats, int threads,
-         bool volumetric_average = false, bool self_contact = true) {
+         gimlet::solver_options<S> opt = {}, bool self_contact = true) {
     using solver = gimlet::solver<S, gimlet::shape::ugimp, M, Contact, gimlet::field_list<>, Part>;
-    gimlet::solver_options<S> opt;
     opt.threads = threads;
-    opt.volumetric_average = volumetric_average;
     std::vector<double> seconds;
     std::size_t particles = 0, bytes = 0;
     for (int k = 0; k < repeats; ++k) {
@@ -80,13 +78,29 @@ int main(int argc, char** argv) try {
     run<contact::distance>("paper's Walsh-Christian heating (instead of the isentrope temperature)",
                            materials::make_hmx<eos::energy_reference::internal_energy, materials::paper_temperature>(),
                            cell, steps, repeats, threads);
-    run<contact::distance>("volumetric average on (solver_options)", materials::make_hmx(), cell, steps, repeats, threads, true);
+    auto options = [](auto&& set) {
+        solver_options<S> opt;
+        set(opt);
+        return opt;
+    };
+    run<contact::distance>("volumetric average on (solver_options)", materials::make_hmx(), cell, steps, repeats, threads,
+                           options([](auto& o) { o.volumetric_average = true; }));
+    // The particle-scale options of docs/equations.md: each adds passes over the particles and nodes.
+    run<contact::distance>("consistent-mass accelerations, k = 1 (solver_options)", materials::make_hmx(), cell, steps,
+                           repeats, threads, options([](auto& o) { o.consistent_mass_iterations = 1; }));
+    run<contact::distance>("consistent-mass accelerations, k = 4 (solver_options)", materials::make_hmx(), cell, steps,
+                           repeats, threads, options([](auto& o) { o.consistent_mass_iterations = 4; }));
+    run<contact::distance>("volume filter with k = 4 (solver_options)", materials::make_hmx(), cell, steps, repeats,
+                           threads, options([](auto& o) {
+                               o.consistent_mass_iterations = 4;
+                               o.volume_filter = true;
+                           }));
     // Self-contact costs what its per-step passes cost even where no void closes (here none).
     run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
         "self-contact on (multi_field::self_contact; no void in this scene)", materials::make_hmx(), cell, steps,
         repeats, threads);
     run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
-        "self-contact compiled in but enabled = false", materials::make_hmx(), cell, steps, repeats, threads, false,
+        "self-contact compiled in but enabled = false", materials::make_hmx(), cell, steps, repeats, threads, {},
         false);
     run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
     run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
