@@ -18,12 +18,12 @@
 //   q = rho (C_Q^2 du^2 - C_L c0 du) where the cell compresses (du < 0), else 0 (Wilkins 1980,
 //     J. Comput. Phys. 36: his linear term takes the local sound speed; c0 here).
 // The energy update is not the compatible one (Caramana et al. 1998, J. Comput. Phys. 146): the
-// forces take P^n, the work the mean of P^n and P^{n+1}, so total energy is kept only to O(dt^2).
-// Measured on the shocked state at 2 us: theta / theta_H - 1 = +0.24, +0.066, +0.019, +0.006 %
-// at 500 m/s for a time step 4, 2, 1 and 0.5 times the one used here (700 m/s: +0.72, +0.20,
-// +0.061, +0.020 %), the same at 400 to 3200 cells. The step here (settings::courant on 7 km/s,
-// above the largest c / J of these runs, 6.8 km/s in the 700 m/s shocked state) leaves about
-// 0.02 %.
+// forces take P^n, the work the mean of P^n and P^{n+1}, so total energy is not kept exactly and
+// the shocked state's theta depends on the step. Measured at 2 us, 800 cells: theta / theta_H - 1
+// = +0.030, +0.0093, +0.0031, +0.0011 % at 500 m/s for 4, 2, 1 and 0.5 times the step used here
+// (700 m/s: +0.094, +0.030, +0.0105, +0.0041 %; about order 1.5 in the step). The step
+// (settings::courant on 7 km/s, above the largest c / J of these runs, 6.8 km/s in the 700 m/s
+// shocked state) leaves 0.003 and 0.010 %.
 
 #include <gimlet/gimlet.hpp>
 
