@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace lagrangian_1d {
@@ -50,38 +51,57 @@ struct sample {
     double lower_face = 0;     // m, the impact-plane face (0 until the slabs part)
 };
 
+// The library's EOS and temperature for the constants c.
+struct model {
+    gimlet::eos::mie_gruneisen<> eos;
+    gimlet::thermal::isentrope_temperature th;
+    double gruneisen_rho0;  // Gamma rho0: Gamma rho = gruneisen_rho0 / J
+
+    explicit model(const gimlet::materials::hmx_constants& c)
+        : eos{c.density, c.sound_speed, c.slope, c.gruneisen},
+          th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat, c.temperature},
+          gruneisen_rho0(c.gruneisen * c.density) {}
+
+    // P = P_H(J) + Gamma rho (e - e_H(J)) (eos::mie_gruneisen, without the shear energy: no strength).
+    [[nodiscard]] double pressure(double j, double e) const {
+        return eos.hugoniot_pressure(j) + gruneisen_rho0 / j * (e - eos.hugoniot_energy(j));
+    }
+};
+
+// The median of v (reorders it; v not empty).
+inline double median(std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
 // The strengthless Rankine-Hugoniot state of the symmetric impact at v (U_s = c0 + s u_p, u_p = v):
 // its theta = T_H / T_s(J_H), which an isentropic release keeps.
 inline double hugoniot_theta(double v, const gimlet::materials::hmx_constants& c = {}) {
-    const gimlet::thermal::isentrope_temperature th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
-                                                    c.temperature};
+    const model md(c);
     const double eta = v / (c.sound_speed + c.slope * v), j = 1.0 - eta;
-    return th.temperature(j, 0.5 * v * v) / th.isentrope(j);  // e_H = u_p^2 / 2
+    return md.th.temperature(j, 0.5 * v * v) / md.th.isentrope(j);  // e_H = u_p^2 / 2
 }
 
 // T - T0 after an isentropic release from that state to P = 0: on the isentrope theta = theta_H,
 // T = theta_H T_s(J) and e = e_s(J) + c_v (T - T_s(J)); P(J, e) = 0 solved for J by bisection
 // (P falls as J grows there).
 inline double isentropic_release_heating(double v, const gimlet::materials::hmx_constants& c = {}) {
-    const gimlet::eos::mie_gruneisen<> eos{c.density, c.sound_speed, c.slope, c.gruneisen};
-    const gimlet::thermal::isentrope_temperature th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
-                                                    c.temperature};
+    const model md(c);
     const double theta = hugoniot_theta(v, c);
     auto pressure = [&](double j) {
-        const double e = th.reference_energy(j) + c.specific_heat * (theta - 1.0) * th.isentrope(j);
-        return eos.hugoniot_pressure(j) + c.gruneisen * c.density / j * (e - eos.hugoniot_energy(j));
+        return md.pressure(j, md.th.reference_energy(j) + c.specific_heat * (theta - 1.0) * md.th.isentrope(j));
     };
     double lo = 1.0, hi = 1.1;  // P > 0 at J = 1 (the heat's pressure), < 0 at 1.1
+    if (!(pressure(lo) > 0 && pressure(hi) < 0))
+        throw std::domain_error("isentropic_release_heating: P = 0 is not between J = 1 and 1.1 at this velocity");
     for (int k = 0; k < 60; ++k) (pressure(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-    return theta * th.isentrope(0.5 * (lo + hi)) - c.temperature;
+    return theta * md.th.isentrope(0.5 * (lo + hi)) - c.temperature;
 }
 
 // Runs to the last of `times` (s, increasing) and returns one sample at each.
 inline std::vector<sample> run(const settings& s, const std::vector<double>& times,
                                const gimlet::materials::hmx_constants& c = {}) {
-    const gimlet::eos::mie_gruneisen<> eos{c.density, c.sound_speed, c.slope, c.gruneisen};
-    const gimlet::thermal::isentrope_temperature th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
-                                                    c.temperature};
+    const model md(c);
     const int n = s.cells;
     const double dx0 = s.length / n, rho0 = c.density, m = rho0 * dx0;
     std::vector<double> x(n + 1), u(n + 1, -s.velocity), J(n, 1.0), e(n, 0.0), P(n, 0.0), q(n, 0.0);
@@ -102,11 +122,10 @@ inline std::vector<sample> run(const settings& s, const std::vector<double>& tim
                 const double j1 = (x[k + 1] - x[k]) / dx0, dv = (j1 - J[k]) / rho0, du = u[k + 1] - u[k];
                 const double rho = rho0 / (0.5 * (j1 + J[k]));
                 q[k] = du < 0 ? rho * (s.quadratic * s.quadratic * du * du - s.linear * c.sound_speed * du) : 0.0;
-                const double g1 = c.gruneisen * rho0 / j1;
-                e[k] = (e[k] - (0.5 * (P[k] + eos.hugoniot_pressure(j1) - g1 * eos.hugoniot_energy(j1)) + q[k]) * dv) /
-                       (1.0 + 0.5 * g1 * dv);
+                const double g1 = md.gruneisen_rho0 / j1, ph = md.eos.hugoniot_pressure(j1), eh = md.eos.hugoniot_energy(j1);
+                e[k] = (e[k] - (0.5 * (P[k] + ph - g1 * eh) + q[k]) * dv) / (1.0 + 0.5 * g1 * dv);
                 J[k] = j1;
-                P[k] = eos.hugoniot_pressure(j1) + g1 * (e[k] - eos.hugoniot_energy(j1));
+                P[k] = ph + g1 * (e[k] - eh);
             }
             t += dt;
         }
@@ -115,14 +134,10 @@ inline std::vector<sample> run(const settings& s, const std::vector<double>& tim
         for (int k = 0; k < n; ++k) {
             const double y = 0.5 * (x[k] + x[k + 1]);
             if (y < x[0] + s.exclude || y > x[n] - s.exclude) continue;
-            const double temperature = th.temperature(J[k], e[k]);
-            theta.push_back(temperature / th.isentrope(J[k]));
+            const double temperature = md.th.temperature(J[k], e[k]);
+            theta.push_back(temperature / md.th.isentrope(J[k]));
             heating.push_back(temperature - c.temperature);
         }
-        auto median = [](std::vector<double>& v) {
-            std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-            return v[v.size() / 2];
-        };
         out.push_back({t, median(theta), median(heating), x[0]});
     }
     return out;

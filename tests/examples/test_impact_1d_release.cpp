@@ -42,11 +42,6 @@ window_stats summarise(const Samples& samples, double reference_theta) {
     return w;
 }
 
-double median(std::vector<double>& x) {
-    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
-    return x[x.size() / 2];
-}
-
 using strengthless = gimlet::material<gimlet::strength::none, gimlet::eos::mie_gruneisen<>,
                                       gimlet::thermal::isentrope_temperature, gimlet::viscosity::bulk>;
 
@@ -95,7 +90,7 @@ mpm_run mpm_release(double v, double cell) {
         if (upper(i) && -ps[i].get<gimlet::fields::stress>()(1, 1) > 1e9) front = std::max(front, y_of(i));
     for (std::size_t i = 0; i < ps.size(); ++i)
         if (upper(i) && y_of(i) < front - 5 * cell && y_of(i) > front - 2.5e-3) theta.push_back(theta_of(ps[i]));
-    r.plateau_theta = median(theta);
+    r.plateau_theta = lagrangian_1d::median(theta);
     for (const double t : window()) {
         sol.run_until(t);
         double lo = 1e9, hi = -1e9;
@@ -108,7 +103,7 @@ mpm_run mpm_release(double v, double cell) {
             theta.push_back(theta_of(ps[i]));
             heating.push_back(ps[i].get<gimlet::fields::temperature>() - th.initial_temperature());
         }
-        r.samples.push_back({t, median(theta), median(heating), lo});
+        r.samples.push_back({t, lagrangian_1d::median(theta), lagrangian_1d::median(heating), lo});
         REQUIRE(sol.health().total() == 0);
     }
     return r;

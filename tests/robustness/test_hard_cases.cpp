@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -737,21 +738,16 @@ double row_noise(const Solver& sol, double cell) {
         lo = std::min(lo, y), hi = std::max(hi, y);
     }
     const double mid = 0.5 * (lo + hi);
-    std::vector<std::pair<long, std::pair<double, int>>> rows;  // (key, (sum of v_y, count)), sorted below
+    std::map<long, std::pair<double, int>> rows;  // row key -> (sum of v_y, count), bottom to top
     for (std::size_t i = 0; i < ps.size(); ++i) {
         const double y = ps[i].template get<gimlet::fields::position>()(1);
         if (std::abs(y - mid) > 4e-3) continue;
-        rows.push_back({std::lround(y / (0.25 * cell)), {ps[i].template get<gimlet::fields::velocity>()(1), 1}});
+        auto& row = rows[std::lround(y / (0.25 * cell))];
+        row.first += ps[i].template get<gimlet::fields::velocity>()(1);
+        ++row.second;
     }
-    std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<double> v;  // the rows' mean velocities, bottom to top
-    for (std::size_t k = 0; k < rows.size();) {
-        double sum = 0;
-        int n = 0;
-        const long key = rows[k].first;
-        for (; k < rows.size() && rows[k].first == key; ++k) sum += rows[k].second.first, n += rows[k].second.second;
-        v.push_back(sum / n);
-    }
+    for (const auto& [key, row] : rows) v.push_back(row.first / row.second);
     double sq = 0;
     for (std::size_t k = 1; k + 1 < v.size(); ++k) {
         const double d = v[k] - 0.5 * (v[k - 1] + v[k + 1]);
