@@ -7,8 +7,8 @@
 //                   [--end-us 40] [--sample-every-us 0.1] [--snapshot-every-us 4]
 //                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
-//                   [--consistent-mass 0] [--volume-filter off|on] [--viscosity-linear 0.06]
-//                   [--viscosity-quadratic 1.2]
+//                   [--consistent-mass 4] [--volume-filter off|on] [--viscosity-linear 0.12]
+//                   [--viscosity-quadratic 2.4]
 //                   [--temperature isentrope|paper] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
@@ -216,7 +216,7 @@ int run(const settings& s, const run_files& io) {
         pvd.emplace(pvd_path);
     } else {
         auto v = gimlet::io::load_checkpoint(io.restart, sol);
-        // Checkpoints written before these flags existed ran with their defaults.
+        // Checkpoints written before these flags existed ran with the defaults of that time.
         v.try_emplace("consistent_mass", 0.0);
         v.try_emplace("viscosity_linear", 0.06);
         v.try_emplace("viscosity_quadratic", 1.2);

@@ -51,7 +51,7 @@ gimlet_cli_case(impact_1d viscosity_neg "--viscosity-linear -0.1" "--viscosity-l
 gimlet_cli_case(impact_1d consistent_over "--consistent-mass 6" "--consistent-mass = 6 is invalid; valid: a whole number in [0, 5]")
 gimlet_cli_case(impact_1d consistent_usl  "--consistent-mass 1 --scheme usl" "consistent_mass_iterations with the USL scheme = 1 is invalid")
 gimlet_cli_case(impact_1d filter_unknown "--volume-filter yes" "--volume-filter = yes is invalid; valid: off|on")
-gimlet_cli_case(impact_1d filter_lumped "--volume-filter on" "volume_filter (with consistent_mass_iterations = 0) = true is invalid")
+gimlet_cli_case(impact_1d filter_lumped "--consistent-mass 0 --volume-filter on" "volume_filter (with consistent_mass_iterations = 0) = true is invalid")
 gimlet_cli_case(impact_1d unknown_flag    "--speed 300"       "unknown flag --speed")
 gimlet_cli_case(impact_1d missing_value   "--cell"            "flag --cell needs a value")
 gimlet_cli_case(impact_1d given_twice     "--cell 0.1 --cell 0.2" "flag --cell is given more than once")
