@@ -151,11 +151,15 @@ def resolution(root, fig_dir):
         h = [p[0] for p in pts]
         ax[0].plot(h, [p[1] for p in pts], "o-", label=f"v = {v:g} m/s")
         ax[1].plot(h, [p[2] for p in pts], "o-", label=f"v = {v:g} m/s, peak")
-        ax[1].plot(h, [p[3] for p in pts], "s--", label=f"v = {v:g} m/s, 5 us after the peak")
+        # -1: the run ended less than 5 us after its peak, so there is no value to draw.
+        settled = [(p[0], p[3]) for p in pts if p[3] > 0]
+        ax[1].plot([q[0] for q in settled], [q[1] for q in settled], "s--",
+                   label=f"v = {v:g} m/s, 5 us after the peak")
     ax[1].set_yscale("log")
     for a, label in zip(ax, ("D_max (mm)", "hot-spot temperature (K)")):
         a.set_xscale("log")
         a.set_xticks([0.5, 1, 2], ["0.5", "1", "2"])
+        a.tick_params(axis="x", which="minor", bottom=False, labelbottom=False)
         a.set_xlabel("cell size (mm)")
         a.set_ylabel(label)
         a.legend(fontsize=7)

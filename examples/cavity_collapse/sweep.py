@@ -20,6 +20,7 @@ the standard library, so it runs with any python3.
 import argparse
 import concurrent.futures
 import csv
+import hashlib
 import os
 import subprocess
 import sys
@@ -40,9 +41,12 @@ class Runner:
         self.cell = args.cell
         self.out = Path(args.output)
         self.jobs = args.jobs
+        # A finished run is reused only if the same binary made it: the flags name what a run
+        # changes, the binary's defaults (the viscosity, the mass matrix, ...) the rest.
+        self.binary_id = hashlib.sha256(Path(self.binary).read_bytes()).hexdigest()[:16]
 
     def run(self, sweep, v, r, after_us, cell=None):
-        """One run; returns its summary row (a dict). Reuses a finished run with the same flags."""
+        """One run; returns its summary row (a dict). Reuses a finished run with the same flags and binary."""
         cell = cell or self.cell
         name = f"v{v:g}_R{r:g}_h{cell:g}"
         out = self.out / sweep / name
@@ -51,13 +55,14 @@ class Runner:
                  "--snapshot-every-us=0", "--threads=1", "--quiet", "--no-figures", f"--output={out}"]
         stamp = out / "flags.txt"
         summary = out / "summary.csv"
-        if not (summary.exists() and stamp.exists() and stamp.read_text() == " ".join(flags)):
+        key = " ".join(flags) + f" [binary {self.binary_id}]"
+        if not (summary.exists() and stamp.exists() and stamp.read_text() == key):
             out.mkdir(parents=True, exist_ok=True)
             done = subprocess.run([self.binary, *flags], capture_output=True, text=True)
             # 3: the library stopped the run (e.g. the EOS singularity); its outputs say where.
             if done.returncode not in (0, 3):
                 sys.exit(f"sweep.py: {self.binary} {' '.join(flags)} failed:\n{done.stdout}{done.stderr}")
-            stamp.write_text(" ".join(flags))
+            stamp.write_text(key)
         with summary.open() as f:
             row = next(csv.DictReader(f))
         row["run"] = name
