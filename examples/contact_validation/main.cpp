@@ -4,8 +4,13 @@
 // al. 2000, the paper's distance-switched contact). The paper reports a spurious pressure peak
 // at the interface for the first two and none for its own.
 //
-//   contact_validation [--velocity 300] [--cell 0.5] [--time-us 14] [--threads 0]
+//   contact_validation [--velocity 300] [--cell 0.5] [--time-us 14] [--consistent-mass 4]
+//                      [--viscosity-linear 0.12] [--viscosity-quadratic 2.4] [--threads 0]
 //                      [--output results/contact_validation]
+//
+// The mass matrix and the viscosity default to the HMX examples' pair, as in cavity_collapse
+// (docs/equations.md, "The examples' defaults"); --consistent-mass 0 --viscosity-linear 0.06
+// --viscosity-quadratic 1.2 gives the library's.
 //
 // Writes OUTPUT/profile_<policy>.csv (y_mm, pressure_Pa; y from the bottom of the lower block),
 // OUTPUT/summary.csv (policy, interface_peak_over_plateau, ...) and, where python3 with
@@ -20,12 +25,15 @@
 
 int main(int argc, char** argv) try {
     example::cli args(argc, argv,
-                      "usage: contact_validation [--velocity V_m_s] [--cell H_mm] [--time-us T] [--threads N] "
-                      "[--output DIR]");
+                      "usage: contact_validation [--velocity V_m_s] [--cell H_mm] [--time-us T] [--consistent-mass K] "
+                      "[--viscosity-linear B1] [--viscosity-quadratic B2] [--threads N] [--output DIR]");
     contact_validation::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
     s.time = 1e-6 * args.real("time-us", 14.0, 0.0, 40.0);
+    s.consistent_mass = args.integer("consistent-mass", 4, 0, 5);
+    s.viscosity_linear = args.real("viscosity-linear", 0.12, 0.0, 10.0, true);
+    s.viscosity_quadratic = args.real("viscosity-quadratic", 2.4, 0.0, 10.0, true);
     s.threads = args.integer("threads", 0, 0, 256);
     const auto out = args.directory("output", "results/contact_validation");
     args.finish();
@@ -39,11 +47,12 @@ int main(int argc, char** argv) try {
     std::ofstream summary(out / "summary.csv");
     gimlet::io::exact_numbers(summary);
     summary << "policy,interface_peak_over_plateau,particle_peak_over_plateau,interface_peak_Pa,plateau_Pa,"
-               "velocity_m_s,cell_mm,time_us,max_eta";
+               "velocity_m_s,cell_mm,time_us,max_eta,consistent_mass,viscosity_linear,viscosity_quadratic";
     for (const char* name : gimlet::health_events::names) summary << ",events_" << name;
     summary << '\n';
-    std::printf("contact_validation: HMX blocks at +-%.0f m/s, cell %.3f mm, t = %.2f us\n", s.velocity, s.cell * 1e3,
-                s.time * 1e6);
+    std::printf("contact_validation: HMX blocks at +-%.0f m/s, cell %.3f mm, t = %.2f us, consistent mass %d, "
+                "viscosity (%g, %g)\n",
+                s.velocity, s.cell * 1e3, s.time * 1e6, s.consistent_mass, s.viscosity_linear, s.viscosity_quadratic);
     std::printf("  %-12s %12s %18s %14s %14s\n", "policy", "peak/plateau", "(particle values)", "peak (Pa)",
                 "plateau (Pa)");
     for (const auto& r : results) {
@@ -53,7 +62,8 @@ int main(int argc, char** argv) try {
         for (const auto& [y, p] : r.profile) prof << (y + r.interface_y) * 1e3 << ',' << p << '\n';
         summary << r.policy << ',' << r.peak_over_plateau << ',' << r.particle_peak_over_plateau << ','
                 << r.interface_peak << ',' << r.plateau << ',' << s.velocity << ',' << s.cell * 1e3 << ','
-                << s.time * 1e6 << ',' << r.max_eta;
+                << s.time * 1e6 << ',' << r.max_eta << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
+                << s.viscosity_quadratic;
         for (const auto n : r.health.count) summary << ',' << n;
         summary << '\n';
         for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)

@@ -64,6 +64,8 @@ gimlet_cli_case(impact_1d help            "--help"            "usage: impact_1d"
 gimlet_cli_case(contact_validation cell_zero      "--cell 0"         "--cell = 0 is invalid; valid range: (0, 4]")
 gimlet_cli_case(contact_validation velocity_nan   "--velocity nan"   "--velocity = nan is invalid; valid range: (0, 1000]")
 gimlet_cli_case(contact_validation time_negative  "--time-us -5"     "--time-us = -5 is invalid; valid range: (0, 40]")
+gimlet_cli_case(contact_validation consistent_over "--consistent-mass 6" "--consistent-mass = 6 is invalid; valid: a whole number in [0, 5]")
+gimlet_cli_case(contact_validation viscosity_neg  "--viscosity-quadratic -1" "--viscosity-quadratic = -1 is invalid; valid range: [0, 10]")
 gimlet_cli_case(contact_validation unknown_flag   "--end-us 5"       "unknown flag --end-us")
 gimlet_cli_case(contact_validation output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
 
