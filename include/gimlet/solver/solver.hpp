@@ -662,6 +662,7 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
     std::vector<std::uint8_t> cm_lumped_;
+    std::vector<vector> cm_field_shift_;  // per field: the acceleration its held entries' share gives back
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
     // them; per particle the gathered values, the weight on the nodes above the cut-off and the
