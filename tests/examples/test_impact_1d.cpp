@@ -196,8 +196,8 @@ TEST_CASE("impact_1d with the consistent mass: less ringing, a sharper front", "
 // nodes shared by two fields kept their lumped accelerations, that cell read 37 % under the
 // plateau under MUSL and 33 % under USF (24 % at k = 1): the iteration coupled each field's edge
 // node, whose velocity the contact then sets, to the cell behind it (docs/equations.md,
-// "Consistent-mass accelerations"). Measured after: -0.1 % (MUSL) and +2.9 % (USF); with the lumped
-// mass -1.9 % and +3.1 %.
+// "Consistent-mass accelerations"). Measured after: -2.6 % (MUSL) and +1.9 % (USF), -2.0 % at k = 1;
+// with the lumped mass -1.9 % and +3.1 %.
 TEST_CASE("impact_1d with the consistent mass and the distance contact: no pressure dip at the contact plane",
           "[examples][verification][contact]") {
     using M = gimlet::materials::hmx_material<>;

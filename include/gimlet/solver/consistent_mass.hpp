@@ -23,8 +23,9 @@
 /// lumped masses), so momentum is kept; light nodes (mass_cutoff) take no part, and each
 /// particle's share of M a is spread over its other nodes (below) so that this stays exact.
 /// An entry at a node that two or more fields share (where contact may act) keeps its lumped
-/// acceleration, and its neighbours see that (the share of the correction it drops goes to its
-/// field as a uniform acceleration, so momentum stays exact): the contact law sets such a node's velocity after
+/// acceleration, and the particles that reach it take part with their lumped mass (M's diagonal),
+/// so that M's columns still sum to the lumped masses and momentum stays exact: the contact law
+/// sets such a node's velocity after
 /// the momentum update, and coupling a field's edge node to its neighbours through M spread the
 /// free surface's acceleration, which the contact then overrides, into the cell behind it (a
 /// 1-D impact through the distance contact read 37 % under the plateau pressure in the first
@@ -49,6 +50,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     cm_product_.resize(ne);
     cm_particle_.resize(particles_.size());
     cm_lumped_.assign(ne, 0);
+    cm_held_particle_.assign(particles_.size(), 0);
     // a^(0): the lumped accelerations. Light nodes (mass_cutoff) keep their forces and take no
     // part; a component a fixed or slip wall holds has none (wall_free_). An entry at a node
     // where two or more fields are above the cut-off (the shared nodes of multi-field contact)
@@ -83,21 +85,27 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             auto at = entries(i);
             vector ap = vector::Zero();
             real heavy = 0;  // the particle's weight on nodes above the mass cut-off
+            bool held = false;  // whether it reaches a shared node's entry
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = at(node);
                 ap += w * cm_accel_[e];
                 if (grid_.mass[e] > mass_cutoff_) heavy += w;
+                held = held || cm_lumped_[e];
             });
             // m_p a_p over that weight (none where the particle reaches no such node)
             cm_particle_[i] = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+            cm_held_particle_[i] = held;
         }
         fill_entries(cm_product_, vector::Zero());
         for_each_particle_by_slab([&](std::size_t i) {
             auto at = entries(i);
             const vector share = cm_particle_[i];
+            // A particle that reaches a shared node's entry takes part with its lumped mass
+            // (M's diagonal): no entry of its stencil is coupled to another through it.
+            const bool lumped = cm_held_particle_[i] != 0;
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = at(node);
-                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += w * share;
+                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += lumped ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
             });
         });
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
@@ -109,41 +117,13 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         }
     }
     // f <- f + m (a^(k) - a^(0)): m a^(k) where a component is free, the force as it was where
-    // a wall holds it (the wall then sets that velocity component) and at a shared node's entry.
-    // Holding those at a^(0) drops their share of the corrections m a^(j) - M a^(j), which sum to
-    // zero over a field's entries: the sum of what the held entries would have taken in the last
-    // iteration, m a^(0) - M a^(k-1), is given back to the field's other entries in proportion to
-    // their masses (a uniform acceleration), so the field's momentum stays exact while no entry
-    // next to a shared node takes more than its share. A field with no shared node takes nothing.
-    const std::size_t field_count = grid_.field_count();
-    cm_field_shift_.assign(field_count, vector::Zero());
-    if constexpr (multi_field) {
-        for (std::size_t f = 0; f < field_count; ++f) {  // in node order: the same sums whatever the threads
-            vector dropped = vector::Zero(), free_mass = vector::Zero();
-            bool any = false;
-            for (std::size_t node = 0; node < grid_nodes; ++node) {
-                const std::size_t e = f * grid_nodes + node;
-                const real m = grid_.mass[e];
-                if (m <= mass_cutoff_) continue;
-                if (cm_lumped_[e]) {
-                    dropped += wall_free_[e].cwiseProduct(m * cm_first_[e] - cm_product_[e]);
-                    any = true;
-                } else {
-                    free_mass += m * wall_free_[e];
-                }
-            }
-            if (!any) continue;
-            for (int d = 0; d < S::dim; ++d)
-                if (free_mass[d] > 0) cm_field_shift_[f][d] = dropped[d] / free_mass[d];
-        }
-    }
+    // a wall holds it (the wall then sets that velocity component) and at a shared node's entry
+    // (where a^(k) = a^(0)).
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
     for (std::ptrdiff_t k = 0; k < nodes; ++k) {
         const auto e = static_cast<std::size_t>(k);
         const real m = grid_.mass[e];
-        if (m <= mass_cutoff_ || cm_lumped_[e]) continue;
-        grid_.force[e] += m * (cm_accel_[e] - cm_first_[e] +
-                               wall_free_[e].cwiseProduct(cm_field_shift_[e / grid_nodes]));
+        if (m > mass_cutoff_) grid_.force[e] += m * (cm_accel_[e] - cm_first_[e]);
     }
 }
 

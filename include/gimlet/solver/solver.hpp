@@ -661,8 +661,7 @@ private:
     // over its weight on the nodes above the mass cut-off; per node entry whether it keeps its
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
-    std::vector<std::uint8_t> cm_lumped_;
-    std::vector<vector> cm_field_shift_;  // per field: the acceleration its held entries' share gives back
+    std::vector<std::uint8_t> cm_lumped_, cm_held_particle_;  // and per particle whether it reaches one
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
     // them; per particle the gathered values, the weight on the nodes above the cut-off and the
