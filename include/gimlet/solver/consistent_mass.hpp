@@ -24,12 +24,11 @@
 /// particle's share of M a is spread over its other nodes (below) so that this stays exact.
 /// An entry at a node that two or more fields share (where contact may act) keeps its lumped
 /// acceleration, and the particles that reach it take part with their lumped mass (M's diagonal),
-/// so that M's columns still sum to the lumped masses and momentum stays exact: the contact law
-/// sets such a node's velocity after
-/// the momentum update, and coupling a field's edge node to its neighbours through M spread the
-/// free surface's acceleration, which the contact then overrides, into the cell behind it (a
-/// 1-D impact through the distance contact read 37 % under the plateau pressure in the first
-/// cell at k = 4; docs/equations.md).
+/// so that M's columns still sum to the lumped masses and momentum stays exact. The contact law
+/// sets such a node's velocity after the momentum update; coupled to its neighbours through M,
+/// a field's edge node there had spread the free surface's acceleration, which the contact then
+/// overrides, into the cell behind it (a 1-D impact through the distance contact read 37 % under
+/// the plateau pressure in the first cell at k = 4; docs/equations.md).
 
 #include "gimlet/solver/solver.hpp"
 
