@@ -48,8 +48,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
     cm_particle_.resize(particles_.size());
-    cm_lumped_.assign(ne, 0);
-    cm_held_particle_.assign(particles_.size(), 0);
+    if constexpr (multi_field) {  // a single-field solver has no shared node, and pays nothing for them
+        cm_lumped_.assign(ne, 0);
+        cm_held_particle_.assign(particles_.size(), 0);
+    }
+    auto shared_entry = [&](std::size_t e) {
+        if constexpr (multi_field) return cm_lumped_[e] != 0;
+        else return (static_cast<void>(e), false);
+    };
     // a^(0): the lumped accelerations. Light nodes (mass_cutoff) keep their forces and take no
     // part; a component a fixed or slip wall holds has none (wall_free_). An entry at a node
     // where two or more fields are above the cut-off (the shared nodes of multi-field contact)
@@ -89,11 +95,11 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
                 const std::size_t e = at(node);
                 ap += w * cm_accel_[e];
                 if (grid_.mass[e] > mass_cutoff_) heavy += w;
-                held = held || cm_lumped_[e];
+                held = held || shared_entry(e);
             });
             // m_p a_p over that weight (none where the particle reaches no such node)
             cm_particle_[i] = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-            cm_held_particle_[i] = held;
+            if constexpr (multi_field) cm_held_particle_[i] = held;
         }
         fill_entries(cm_product_, vector::Zero());
         for_each_particle_by_slab([&](std::size_t i) {
@@ -101,7 +107,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             const vector share = cm_particle_[i];
             // A particle that reaches a shared node's entry takes part with its lumped mass
             // (M's diagonal): no entry of its stencil is coupled to another through it.
-            const bool lumped = cm_held_particle_[i] != 0;
+            bool lumped = false;
+            if constexpr (multi_field) lumped = cm_held_particle_[i] != 0;
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = at(node);
                 if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += lumped ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
@@ -111,7 +118,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         for (std::ptrdiff_t k = 0; k < nodes; ++k) {
             const auto e = static_cast<std::size_t>(k);
             const real m = grid_.mass[e];
-            if (m > mass_cutoff_ && !cm_lumped_[e])
+            if (m > mass_cutoff_ && !shared_entry(e))
                 cm_accel_[e] = cm_first_[e] + wall_free_[e].cwiseProduct(cm_accel_[e] - cm_product_[e] / m);
         }
     }
