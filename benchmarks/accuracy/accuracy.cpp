@@ -11,6 +11,7 @@
 // error2 (impact_1d: shock-speed error), seconds.
 // Flags: --case mms|impact|all (all), --quick 1 (fewer resolutions, for the smoke test).
 #include "common/bench.hpp"
+#include "common/hmx_defaults.hpp"
 #include "impact_1d/impact_1d.hpp"
 
 #include <cstdio>
@@ -153,7 +154,8 @@ int main(int argc, char** argv) try {
     if (which == "impact" || which == "all") {
         const std::vector<double> cells = quick ? std::vector<double>{0.4} : std::vector<double>{0.4, 0.2, 0.1, 0.05};
         impact(cells, "ugimp", 0, 0.06, 1.2);
-        impact(cells, "ugimp-k4", 4, 0.12, 2.4);
+        impact(cells, "ugimp-k4", example::hmx_defaults::consistent_mass, example::hmx_defaults::viscosity_linear,
+               example::hmx_defaults::viscosity_quadratic);
     }
     return 0;
 } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
+#include "common/hmx_defaults.hpp"
 #include "common/hugoniot.hpp"
 
 #include <gimlet/gimlet.hpp>
@@ -54,14 +55,13 @@ struct settings {
     double hot_spot_radius = 0.75e-3;
     bool volumetric_average = false; // solver_options::volumetric_average
     double pic_fraction = 0;         // solver_options::pic_fraction
-    // solver_options::consistent_mass_iterations (0: the lumped mass). 4 with the viscosity below:
-    // the pair that meets the 1-D shock's plateau, heat, plastic-work and rise criteria
-    // (docs/equations.md, "Consistent-mass accelerations"); the Abaqus pair with the lumped mass
-    // rings (plastic work +46 to +172 %).
-    int consistent_mass = 4;
+    // solver_options::consistent_mass_iterations (0: the lumped mass) and viscosity::bulk's b1, b2:
+    // the HMX examples' pair (common/hmx_defaults.hpp; the Abaqus pair with the lumped mass rings,
+    // plastic work +46 to +172 %).
+    int consistent_mass = example::hmx_defaults::consistent_mass;
     bool volume_filter = false;      // solver_options::volume_filter (needs consistent_mass >= 1)
-    double viscosity_linear = 0.12;    // viscosity::bulk's b1 (twice the Abaqus/Explicit 0.06)
-    double viscosity_quadratic = 2.4;  // viscosity::bulk's b2 (twice the Abaqus/Explicit 1.2)
+    double viscosity_linear = example::hmx_defaults::viscosity_linear;
+    double viscosity_quadratic = example::hmx_defaults::viscosity_quadratic;
     bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
     // Self-contact (multi_field::self_contact): each block's two sides of its closing cavity in
     // separate velocity fields where they meet. Needs a multi-field contact (not single).

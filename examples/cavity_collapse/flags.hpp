@@ -42,10 +42,10 @@ inline settings read_settings(example::cli& args) {
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.75, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
-    s.consistent_mass = args.integer("consistent-mass", 4, 0, 5);
+    s.consistent_mass = args.integer("consistent-mass", example::hmx_defaults::consistent_mass, 0, 5);
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
-    s.viscosity_linear = args.real("viscosity-linear", 0.12, 0.0, 10.0, true);
-    s.viscosity_quadratic = args.real("viscosity-quadratic", 2.4, 0.0, 10.0, true);
+    s.viscosity_linear = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
+    s.viscosity_quadratic = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
     {
         const std::string list = args.path("snapshots-after-contact-us");

@@ -9,13 +9,14 @@
 //                      [--output results/contact_validation]
 //
 // The mass matrix and the viscosity default to the HMX examples' pair, as in cavity_collapse
-// (docs/equations.md, "The examples' defaults"); --consistent-mass 0 --viscosity-linear 0.06
+// (common/hmx_defaults.hpp); --consistent-mass 0 --viscosity-linear 0.06
 // --viscosity-quadratic 1.2 gives the library's.
 //
 // Writes OUTPUT/profile_<policy>.csv (y_mm, pressure_Pa; y from the bottom of the lower block),
 // OUTPUT/summary.csv (policy, interface_peak_over_plateau, ...) and, where python3 with
 // matplotlib is available, OUTPUT/profiles.png.
 #include "common/cli.hpp"
+#include "common/hmx_defaults.hpp"
 #include "contact_validation/contact_validation.hpp"
 
 #include <cstdio>
@@ -31,9 +32,9 @@ int main(int argc, char** argv) try {
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
     s.time = 1e-6 * args.real("time-us", 14.0, 0.0, 40.0);
-    s.consistent_mass = args.integer("consistent-mass", 4, 0, 5);
-    s.viscosity_linear = args.real("viscosity-linear", 0.12, 0.0, 10.0, true);
-    s.viscosity_quadratic = args.real("viscosity-quadratic", 2.4, 0.0, 10.0, true);
+    s.consistent_mass = args.integer("consistent-mass", example::hmx_defaults::consistent_mass, 0, 5);
+    s.viscosity_linear = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
+    s.viscosity_quadratic = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
     s.threads = args.integer("threads", 0, 0, 256);
     const auto out = args.directory("output", "results/contact_validation");
     args.finish();

@@ -14,8 +14,8 @@
 // (solver_options::consistent_mass_iterations; 0 is the lumped mass; at most 5 at the solver's
 // Courant number 0.4, MUSL and USF only, so the default is 0 with --scheme usl). The defaults,
 // 4 with the viscosity (0.12, 2.4), twice Abaqus/Explicit's, are the pair that meets the
-// plateau, heat, plastic-work and rise criteria at 300-700 m/s (docs/equations.md,
-// "Consistent-mass accelerations"); impact_1d::settings, which the tests build on, keeps the
+// plateau, heat, plastic-work and rise criteria at 300-700 m/s (common/hmx_defaults.hpp;
+// docs/equations.md, "The examples' defaults"); impact_1d::settings, which the tests build on, keeps the
 // lumped mass as the library does. --volume-filter on replaces each particle's J by its
 // projection onto the grid before every material update (solver_options::volume_filter; needs
 // --consistent-mass 1 or more).
@@ -28,6 +28,7 @@
 // MUSL (the library default) loses about 1.3 % over 3 us at 300 m/s by projecting away the
 // post-shock velocity noise (see docs/equations.md).
 #include "common/cli.hpp"
+#include "common/hmx_defaults.hpp"
 #include "impact_1d/impact_1d.hpp"
 
 #include <algorithm>
@@ -50,10 +51,10 @@ int main(int argc, char** argv) try {
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     // USL refuses the consistent mass (solver_options::validate): its default there is the lumped mass.
-    s.consistent_mass = args.integer("consistent-mass", scheme == "usl" ? 0 : 4, 0, 5);
+    s.consistent_mass = args.integer("consistent-mass", scheme == "usl" ? 0 : example::hmx_defaults::consistent_mass, 0, 5);
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
-    const double b1 = args.real("viscosity-linear", 0.12, 0.0, 10.0, true);
-    const double b2 = args.real("viscosity-quadratic", 2.4, 0.0, 10.0, true);
+    const double b1 = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
+    const double b2 = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
              : scheme == "usl"  ? gimlet::update_scheme::usl
                                 : gimlet::update_scheme::usf;

@@ -56,6 +56,9 @@ public:
     void allocate(std::size_t entries) { mass_gradient_.assign(entries, vector::Zero()); }
     /// Per field and node, sum_p m_p G_ip: the scatter adds to it (zero it first).
     [[nodiscard]] std::vector<vector>& mass_gradient() noexcept { return mass_gradient_; }
+    /// Whether two or more fields have mass above the cut-off at `node`, as the step's
+    /// find_shared_nodes found it (call that first).
+    [[nodiscard]] bool shared(std::size_t node) const noexcept { return shared_index_[node] >= 0; }
 
     // The nodes where two or more fields have mass above the cut-off, with each field's outward
     // normal, each pair's normal and each field's furthest particle centre along it

@@ -58,23 +58,16 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     };
     // a^(0): the lumped accelerations. Light nodes (mass_cutoff) keep their forces and take no
     // part; a component a fixed or slip wall holds has none (wall_free_). An entry at a node
-    // where two or more fields are above the cut-off (the shared nodes of multi-field contact)
-    // keeps a^(0) through the iteration.
-    const std::size_t grid_nodes = grid_.size(), fields = grid_.field_count();
+    // where two or more fields are above the cut-off (the shared nodes of multi-field contact,
+    // which the step's find_shared_nodes has found) keeps a^(0) through the iteration.
+    [[maybe_unused]] const std::size_t grid_nodes = grid_.size();  // read in multi-field solvers only
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
     for (std::ptrdiff_t k = 0; k < nodes; ++k) {
         const auto e = static_cast<std::size_t>(k);
         const real m = grid_.mass[e];
         cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
         cm_accel_[e] = cm_first_[e];
-        if constexpr (multi_field) {
-            if (m > mass_cutoff_) {
-                const std::size_t node = e % grid_nodes;
-                std::size_t present = 0;
-                for (std::size_t f = 0; f < fields; ++f) present += grid_.mass[f * grid_nodes + node] > mass_cutoff_;
-                cm_lumped_[e] = present > 1;
-            }
-        }
+        if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
     }
     const auto& mass = particles_.template column<fields::mass>();
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
