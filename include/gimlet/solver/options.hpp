@@ -56,8 +56,10 @@ struct solver_options {
     /// the grid a dispersive lattice whose shocks trail grid-scale ringing; the consistent mass
     /// removes most of it. Momentum is kept. Each iteration costs a gather and a scatter over
     /// the stencils, and the grid's highest frequency rises by up to sqrt(k + 1), so
-    /// cfl sqrt(k + 1) must stay <= 1; MUSL and USF only (USL is refused). 0 = the lumped mass
-    /// (the default: nothing runs). In [0, 8] (4 iterations converge on a regular lattice).
+    /// cfl sqrt(k + 1) must stay <= 1 (in lasting tension, noise grows the faster the closer it
+    /// is to 1: docs/equations.md, "Known limitations"); MUSL and USF only (USL is refused).
+    /// 0 = the lumped mass (the default: nothing runs). In [0, 8] (4 iterations converge on a
+    /// regular lattice).
     int consistent_mass_iterations = 0;
     /// Replace each particle's J = det F, before every material update, by the L2 projection of
     /// the particles' J onto the grid's functions (consistent_mass_iterations iterations of the
