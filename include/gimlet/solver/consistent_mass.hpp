@@ -47,11 +47,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
-    cm_particle_.resize(particles_.size());
-    if constexpr (multi_field) {  // a single-field solver has no shared node, and pays nothing for them
-        cm_lumped_.assign(ne, 0);
-        cm_held_particle_.assign(particles_.size(), 0);
-    }
+    if constexpr (multi_field) cm_lumped_.assign(ne, 0);  // a single-field solver has no shared node, and pays nothing for them
     auto shared_entry = [&](std::size_t e) {
         if constexpr (multi_field) return cm_lumped_[e] != 0;
         else return (static_cast<void>(e), false);
@@ -70,16 +66,16 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
     }
     const auto& mass = particles_.template column<fields::mass>();
-    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     for (int it = 0; it < iterations; ++it) {
-        // M a = sum_p S_ip m_p (sum_j S_jp a_j): gather to the particles, then scatter slab by
-        // slab (a fixed summation order whatever the thread count). Each particle's share is
-        // scattered over its nodes above the cut-off only, its weights there renormalised to one:
-        // sum_i (M a)_i is then sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps
-        // momentum where a particle also reaches a light node.
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
+        // M a = sum_p S_ip m_p (sum_j S_jp a_j): each particle gathers from a^(j) and scatters
+        // its share into the product in one pass, slab by slab (a fixed summation order whatever
+        // the thread count; a^(j) is only read in the pass, so the gathers see the same values
+        // in any order). Each particle's share is scattered over its nodes above the cut-off
+        // only, its weights there renormalised to one: sum_i (M a)_i is then
+        // sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps momentum where a
+        // particle also reaches a light node.
+        fill_entries(cm_product_, vector::Zero());
+        for_each_particle_by_slab([&](std::size_t i) {
             auto at = entries(i);
             vector ap = vector::Zero();
             real heavy = 0;  // the particle's weight on nodes above the mass cut-off
@@ -91,19 +87,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
                 held = held || shared_entry(e);
             });
             // m_p a_p over that weight (none where the particle reaches no such node)
-            cm_particle_[i] = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-            if constexpr (multi_field) cm_held_particle_[i] = held;
-        }
-        fill_entries(cm_product_, vector::Zero());
-        for_each_particle_by_slab([&](std::size_t i) {
-            auto at = entries(i);
-            const vector share = cm_particle_[i];
+            const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
             // A particle that reaches a shared node's entry takes part with its lumped mass
             // (M's diagonal): no entry of its stencil is coupled to another through it.
             bool lumped = false;
-            if constexpr (multi_field) lumped = cm_held_particle_[i] != 0;
+            if constexpr (multi_field) lumped = held;
+            auto again = entries(i);  // a chooser walks the stencil once
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                const std::size_t e = at(node);
+                const std::size_t e = again(node);
                 if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += lumped ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
             });
         });

@@ -657,11 +657,10 @@ private:
     std::vector<std::uint8_t> near_light_;
     std::vector<vector> light_momentum_;
     // Consistent-mass accelerations (consistent_mass.hpp; solver_options::consistent_mass_iterations):
-    // per node entry the lumped and the iterated accelerations and M a, per particle m_p a_p
-    // over its weight on the nodes above the mass cut-off; per node entry whether it keeps its
+    // per node entry the lumped and the iterated accelerations and M a, and whether it keeps its
     // lumped acceleration (an entry at a node two or more fields share).
-    std::vector<vector> cm_first_, cm_accel_, cm_product_, cm_particle_;
-    std::vector<std::uint8_t> cm_lumped_, cm_held_particle_;  // and per particle whether it reaches one
+    std::vector<vector> cm_first_, cm_accel_, cm_product_;
+    std::vector<std::uint8_t> cm_lumped_;
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
     // them; per particle the gathered values, the weight on the nodes above the cut-off and the
