@@ -7,15 +7,18 @@
 //                      + heating) with the distance-switched contact, touching from the start
 //                      so every timed step resolves contact, and the flagship's defaults:
 //                      self-contact on (multi_field::self_contact; no void here, so what a
-//                      user pays for having it), FLIP, no volumetric averaging
+//                      user pays for having it), FLIP, no volumetric averaging, the examples'
+//                      consistent mass (4 iterations) and bulk viscosity (b1, b2) = (0.12, 2.4)
+//                      (examples/common/hmx_defaults.hpp)
 // Flags: --cell MM (0.5), --steps N (1000 at 0.5 mm; scaled by particle count if omitted),
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
 //        the share of each phase of the step, from solver::timings(), on stderr),
-//        --consistent-mass K (0; solver_options::consistent_mass_iterations, at most 5 at the
-//        default Courant number), --volume-filter 1 (solver_options::volume_filter; the hmx
-//        scene only, with --consistent-mass 1 or more).
+//        --consistent-mass K (solver_options::consistent_mass_iterations, at most 5 at the
+//        default Courant number; 0 for the reference scene, 4 for the hmx scene), --volume-filter 1
+//        (solver_options::volume_filter; the hmx scene only, with --consistent-mass 1 or more).
 // Prints one CSV row (header with --header 1).
 #include "common/bench.hpp"
+#include "common/hmx_defaults.hpp"
 
 #include <cstdio>
 #include <exception>
@@ -58,7 +61,8 @@ int main(int argc, char** argv) try {
     const int steps = static_cast<int>(f.number("steps", std::min(1000.0, default_steps)));
     const bool header = f.number("header", 0) != 0;
     const bool phases = f.number("phases", 0) != 0;
-    const int consistent_mass = static_cast<int>(f.number("consistent-mass", 0));
+    const int consistent_mass =
+        static_cast<int>(f.number("consistent-mass", scene == "hmx" ? example::hmx_defaults::consistent_mass : 0));
     const bool volume_filter = f.number("volume-filter", 0) != 0;
     f.finish();
 
@@ -77,8 +81,9 @@ int main(int argc, char** argv) try {
         using material = gimlet::materials::hmx_material<>;
         using solver = gimlet::solver<bench::S2, gimlet::shape::ugimp, material, gimlet::contact::distance,
                                       gimlet::field_list<>, gimlet::multi_field::self_contact>;
-        r = time_scene<solver>([&] { return solver(bench::two_blocks(gimlet::materials::make_hmx(), cell, 0.0), opt); },
-                               dt, steps, repeats);
+        const auto hmx = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(example::hmx_defaults::viscosity_quadratic,
+                                                                                 example::hmx_defaults::viscosity_linear));
+        r = time_scene<solver>([&] { return solver(bench::two_blocks(hmx, cell, 0.0), opt); }, dt, steps, repeats);
     } else {
         throw std::invalid_argument("--scene must be reference or hmx");
     }
