@@ -74,7 +74,7 @@ load "throughput end / scaling start"
 # but no more simulated time than the reference run's 14 us (coarse grids take long steps and
 # the blocks would leave the grid).
 {
-    echo "scene,scheme,cell_mm,particles,steps,threads,repeats,median_s,min_s,mups_median,mups_best"
+    echo "scene,scheme,cell_mm,particles,steps,threads,repeats,median_s,min_s,mups_median,mups_best,consistent_mass"
     for cell in "${sizes[@]}"; do
         steps=$(awk -v c="$cell" -v q="$quick" 'BEGIN { s = int(250 * (c / 0.5) ^ 2); m = int(1000 * 0.5 / c);
                                                           if (s > m) s = m; if (s < 10) s = 10; if (q) s = 3; print s }')
