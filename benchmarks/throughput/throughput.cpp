@@ -15,8 +15,8 @@
 //        the share of each phase of the step, from solver::timings(), on stderr),
 //        --consistent-mass K (solver_options::consistent_mass_iterations, at most 5 at the
 //        default Courant number; 0 for the reference scene and under USL, 4 for the hmx scene),
-//        --volume-filter 1
-//        (solver_options::volume_filter; the hmx scene only, with --consistent-mass 1 or more).
+//        --volume-filter 1 (solver_options::volume_filter; the hmx scene only, with
+//        --consistent-mass 1 or more).
 // Prints one CSV row (header with --header 1).
 #include "common/bench.hpp"
 #include "common/hmx_defaults.hpp"

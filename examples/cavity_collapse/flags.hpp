@@ -6,6 +6,7 @@
 
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "common/cli.hpp"
+#include "common/hmx_flags.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -42,10 +43,11 @@ inline settings read_settings(example::cli& args) {
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.75, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
-    s.consistent_mass = args.integer("consistent-mass", example::hmx_defaults::consistent_mass, 0, 5);
+    const auto mv = example::read_mass_and_viscosity(args);
+    s.consistent_mass = mv.consistent_mass;
+    s.viscosity_linear = mv.viscosity_linear;
+    s.viscosity_quadratic = mv.viscosity_quadratic;
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
-    s.viscosity_linear = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
-    s.viscosity_quadratic = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
     {
         const std::string list = args.path("snapshots-after-contact-us");

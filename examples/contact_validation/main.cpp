@@ -16,7 +16,7 @@
 // OUTPUT/summary.csv (policy, interface_peak_over_plateau, ...) and, where python3 with
 // matplotlib is available, OUTPUT/profiles.png.
 #include "common/cli.hpp"
-#include "common/hmx_defaults.hpp"
+#include "common/hmx_flags.hpp"
 #include "contact_validation/contact_validation.hpp"
 
 #include <cstdio>
@@ -32,9 +32,10 @@ int main(int argc, char** argv) try {
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
     s.time = 1e-6 * args.real("time-us", 14.0, 0.0, 40.0);
-    s.consistent_mass = args.integer("consistent-mass", example::hmx_defaults::consistent_mass, 0, 5);
-    s.viscosity_linear = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
-    s.viscosity_quadratic = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
+    const auto mv = example::read_mass_and_viscosity(args);
+    s.consistent_mass = mv.consistent_mass;
+    s.viscosity_linear = mv.viscosity_linear;
+    s.viscosity_quadratic = mv.viscosity_quadratic;
     s.threads = args.integer("threads", 0, 0, 256);
     const auto out = args.directory("output", "results/contact_validation");
     args.finish();

@@ -28,7 +28,7 @@
 // MUSL (the library default) loses about 1.3 % over 3 us at 300 m/s by projecting away the
 // post-shock velocity noise (see docs/equations.md).
 #include "common/cli.hpp"
-#include "common/hmx_defaults.hpp"
+#include "common/hmx_flags.hpp"
 #include "impact_1d/impact_1d.hpp"
 
 #include <algorithm>
@@ -51,17 +51,16 @@ int main(int argc, char** argv) try {
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     // USL refuses the consistent mass (solver_options::validate): its default there is the lumped mass.
-    s.consistent_mass = args.integer("consistent-mass", scheme == "usl" ? 0 : example::hmx_defaults::consistent_mass, 0, 5);
+    const auto mv = example::read_mass_and_viscosity(args, scheme == "usl");
+    s.consistent_mass = mv.consistent_mass;
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
-    const double b1 = args.real("viscosity-linear", example::hmx_defaults::viscosity_linear, 0.0, 10.0, true);
-    const double b2 = args.real("viscosity-quadratic", example::hmx_defaults::viscosity_quadratic, 0.0, 10.0, true);
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
              : scheme == "usl"  ? gimlet::update_scheme::usl
                                 : gimlet::update_scheme::usf;
     const auto out = args.directory("output", "results/impact_1d");
     args.finish();
 
-    const auto mat = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(b2, b1));
+    const auto mat = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(mv.viscosity_quadratic, mv.viscosity_linear));
     const auto r = contact == "distance"
                        ? impact_1d::run<impact_1d::material, gimlet::contact::distance>(s, mat)
                        : impact_1d::run(s, mat);
@@ -81,8 +80,8 @@ int main(int argc, char** argv) try {
         << r.max_temperature << ',' << s.cell * 1e3 << ',' << scheme << ',' << r.rh_temperature << ','
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
-        << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << b1 << ','
-        << b2 << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off");
+        << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << mv.viscosity_linear << ','
+        << mv.viscosity_quadratic << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off");
     for (const auto n : r.health.count) csv << ',' << n;
     csv << '\n';
 

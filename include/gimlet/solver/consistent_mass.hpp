@@ -89,13 +89,12 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             // m_p a_p over that weight (none where the particle reaches no such node)
             const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
             // A particle that reaches a shared node's entry takes part with its lumped mass
-            // (M's diagonal): no entry of its stencil is coupled to another through it.
-            bool lumped = false;
-            if constexpr (multi_field) lumped = held;
+            // (M's diagonal): no entry of its stencil is coupled to another through it. (No
+            // entry is shared in a single-field solver: `held` is false there.)
             auto again = entries(i);  // a chooser walks the stencil once
             stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = again(node);
-                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += lumped ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
+                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += held ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
             });
         });
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
