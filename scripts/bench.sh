@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Build the benchmarks (`bench` preset) and run them all: throughput (the reference scene and
+# Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, throughput (the reference scene and
 # the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect,
 # accuracy against time, and the flagship's outputs against outputs off. CSVs and Markdown tables go to results/bench/, plots to
 # docs/perf_*.png (drawn with Debian's /usr/bin/python3, which has matplotlib).
@@ -52,7 +52,15 @@ else
     acc_args=()
 fi
 
-load "throughput start"
+# The machine's ceilings (floating-point throughput and bandwidth) that docs/performance.md's
+# per-phase table compares the step with.
+load "ceilings start"
+if [ "$quick" = 1 ]; then
+    "$bin/ceilings/bench_ceilings" --quick 1 | tee "$out/ceilings.md"
+else
+    "$bin/ceilings/bench_ceilings" | tee "$out/ceilings.md"
+fi
+load "ceilings end / throughput start"
 {
     "$bin/throughput/bench_throughput" --header 1 --scene reference --threads 1 "${ref_args[@]}"
     for scene in reference hmx; do
