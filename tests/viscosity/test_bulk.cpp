@@ -61,3 +61,22 @@ TEST_CASE("bulk viscosity: coefficients are refused by name when negative or not
     CHECK(!gimlet::viscosity::none::enabled);
     CHECK(gimlet::viscosity::bulk::enabled);
 }
+
+// The material update passes the wave speed as a callable (material/update.hpp): bulk asks for
+// it only in compression, where q reads it, and gives the q of the number.
+TEST_CASE("bulk viscosity: a wave speed given as a callable is asked for only in compression", "[viscosity]") {
+    store_t store;
+    const auto p = store[store.add()];
+    const gimlet::viscosity::bulk q(2.4, 0.12);
+    const double c = 3000.0;
+    int asked = 0;
+    const auto speed = [&] { return ++asked, c; };
+    for (const double rate : {-1e4, -1.0, 0.0, 1.0, 1e4}) {
+        asked = 0;
+        const double lazy = q.pressure(compressing(rate), speed, p);
+        const double lazy_rate = p.get<gimlet::fields::compression_rate>();
+        CHECK(lazy == q.pressure(compressing(rate), c, p));
+        CHECK(lazy_rate == p.get<gimlet::fields::compression_rate>());
+        CHECK(asked == (rate < 0 ? 1 : 0));
+    }
+}

@@ -144,7 +144,14 @@ void update_material_point(const M& mat, const P& p,
     tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
-    if constexpr (M::viscosity_type::enabled) q = mat.viscosity.pressure(st, longitudinal_wave_speed(p, mat), p);
+    if constexpr (M::viscosity_type::enabled) {
+        // The wave speed costs the EOS's tangent modulus and a square root (a `pow` for
+        // Mie-Grueneisen in compression). A viscosity that takes it as a callable asks for it
+        // only where q needs it; one that takes a number is given it (viscosity::Viscosity).
+        const auto speed = [&] { return longitudinal_wave_speed(p, mat); };
+        if constexpr (requires { mat.viscosity.pressure(st, speed, p); }) q = mat.viscosity.pressure(st, speed, p);
+        else q = mat.viscosity.pressure(st, speed(), p);
+    }
     // Stress power per unit mass, midpoint in time (docs/physics.md section 1): de = dt v_mid sigma:D,
     // with sigma^{n+1} = s - (P + q) I and the midpoint specific volume
     // v_mid = (v^n + v^{n+1}) / 2 = (1 + J^n / J^{n+1}) / (2 rho^{n+1}): with the end-of-step

@@ -7,6 +7,8 @@
 #include "gimlet/viscosity/concepts.hpp"
 
 #include <cmath>
+#include <concepts>
+#include <type_traits>
 
 namespace gimlet::viscosity {
 
@@ -35,13 +37,19 @@ public:
     }
 
     /// q (Pa) for the step `st` (st.length is the cell size); records the compression rate.
-    template <class Real, class P>
-    [[nodiscard]] Real pressure(const point_step<Real>& st, Real sound_speed, const P& p) const {
+    /// `sound_speed` is the wave speed, or a callable that returns it: it is then asked for only
+    /// in compression, where q reads it (the material update passes one; viscosity::Viscosity).
+    template <class Real, class C, class P>
+        requires std::convertible_to<C, Real> || std::is_invocable_r_v<Real, const C&>
+    [[nodiscard]] Real pressure(const point_step<Real>& st, const C& sound_speed, const P& p) const {
         const Real rate = st.D.trace() < 0 ? -st.D.trace() : Real(0);
         p.template get<fields::compression_rate>() = rate;
         if (!(rate > 0)) return Real(0);
         const Real h = st.length;
-        return st.density * h * (Real(b2_ * b2_) * h * rate * rate + Real(b1_) * sound_speed * rate);
+        Real c;
+        if constexpr (std::is_invocable_r_v<Real, const C&>) c = sound_speed();
+        else c = Real(sound_speed);
+        return st.density * h * (Real(b2_ * b2_) * h * rate * rate + Real(b1_) * c * rate);
     }
 
     /// The signal speed that sets the stable time step of particle p with wave speed c on cells

@@ -15,7 +15,12 @@ namespace gimlet::viscosity {
 ///   `if constexpr` when it is false, so an inactive policy costs nothing.
 /// - `required_fields`: field_list of the per-particle state it needs.
 /// - `pressure(step, sound_speed, p)`: the viscous pressure q >= 0 (Pa), added to the EOS
-///   pressure: sigma = s - (P + q) I. `step.length` is the grid cell size.
+///   pressure: sigma = s - (P + q) I. `step.length` is the grid cell size. `sound_speed` is the
+///   particle's longitudinal wave speed (m/s). A policy may also accept it as a callable
+///   (`template <class Real, class C, class P> Real pressure(const point_step<Real>&, const C&,
+///   const P&)`, calling `sound_speed()` for the value): the material update then passes one, so
+///   the speed is computed only where the policy asks for it (viscosity::bulk does, in
+///   compression). A policy that takes `Real sound_speed` is given the number, always.
 /// - `signal_speed(sound_speed, cell, p)`: the speed (m/s, >= sound_speed) that sets particle p's
 ///   stable time step, dt = C h / max_p (signal_speed + |v_p|): a viscosity damps the fastest
 ///   mode and so shortens the step (return sound_speed where q is zero). The solver calls it
