@@ -1,67 +1,69 @@
 // SPDX-License-Identifier: MIT
 // The machine's ceilings for the per-phase table of docs/performance.md (a roofline): what one
 // and N threads reach at
-//   - scalar multiply-adds: a = a * b + c on 8 independent accumulators, not vectorised
-//     (the step's loops are scalar today), 2 flops each;
-//   - vector multiply-adds: the same on 16 or 64 accumulators the compiler vectorises (with the
-//     build's instruction set: SSE2 in the portable build, AVX-512 with -march=native);
+//   - scalar multiply-adds: a = a * b + c on 12 independent accumulators kept scalar (the
+//     step's loops are scalar today), 2 flops each. Twelve chains cover the latency of a
+//     multiply and an add (or an FMA) on two pipes each, and fit the 16 SSE registers; fewer
+//     chains measure the latency, not the throughput;
+//   - vector multiply-adds: the same on 24 or 64 accumulators the compiler vectorises (with the
+//     build's instruction set: SSE2 in the portable build, AVX-512 with -march=native; the best
+//     of the two is reported);
+//   - one at a time, with independent inputs: a division, a square root, std::pow and std::log
+//     (what the material update calls), in ns each;
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
 //     element (the write's allocate not counted, as STREAM does).
-// Best of several repeats, each long enough (about 0.2-1 s) to swamp the timer. Flags:
-// --threads N (2), --quick 1 (a smoke run: short loops, the numbers meaningless).
+// Best of several repeats. Flags: --threads N (2; 1 without OpenMP), --quick 1 (a smoke run:
+// short loops, the numbers meaningless).
 #include "common/bench.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
-
 
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-int thread_id() {
-#if defined(_OPENMP)
-    return omp_get_thread_num();  // <omp.h> comes with the library's GIMLET_OMP
-#else
-    return 0;
+// Keeps x in a register of its own, so that clang's SLP vectoriser cannot pack the scalar
+// chains into vectors (g++ is told not to vectorise scalar_chains instead: with g++ this
+// barrier sends each value through memory).
+inline void keep_scalar([[maybe_unused]] double& x) {
+#if defined(__clang__) && (defined(__x86_64__) || defined(__i386__))
+    asm("" : "+x"(x));
+#elif defined(__clang__) && defined(__aarch64__)
+    asm("" : "+w"(x));
 #endif
 }
 
-// One thread's scalar chains: kept scalar so that the figure is the one scalar code can reach.
-#if defined(__clang__)
-__attribute__((noinline)) double scalar_chains(long iterations, double seed) {
-    double a[8];
-    for (int k = 0; k < 8; ++k) a[k] = seed + k * 1e-3;
-    const double b = 0.999999, c = 1e-7;
-    for (long i = 0; i < iterations; ++i) {
-#pragma clang loop vectorize(disable) unroll(full)
-        for (int k = 0; k < 8; ++k) a[k] = a[k] * b + c;
-    }
-    double s = 0;
-    for (double x : a) s += x;
-    return s;
-}
+// A function g++ must not vectorise.
+#if defined(__GNUC__) && !defined(__clang__)
+#define CEILINGS_SCALAR __attribute__((noinline, optimize("no-tree-vectorize", "no-tree-slp-vectorize")))
 #else
-__attribute__((noinline, optimize("no-tree-vectorize", "no-tree-slp-vectorize"))) double scalar_chains(long iterations,
-                                                                                                          double seed) {
-    double a[8];
-    for (int k = 0; k < 8; ++k) a[k] = seed + k * 1e-3;
+#define CEILINGS_SCALAR __attribute__((noinline))
+#endif
+
+// One thread's scalar chains.
+CEILINGS_SCALAR double scalar_chains(long iterations, double seed) {
+    constexpr int N = 12;
+    double a[N];
+    for (int k = 0; k < N; ++k) a[k] = seed + k * 1e-3;
     const double b = 0.999999, c = 1e-7;
     for (long i = 0; i < iterations; ++i)
-        for (int k = 0; k < 8; ++k) a[k] = a[k] * b + c;
+        for (int k = 0; k < N; ++k) {
+            a[k] = a[k] * b + c;
+            keep_scalar(a[k]);
+        }
     double s = 0;
     for (double x : a) s += x;
     return s;
 }
-#endif
 
-// One thread's vectorised chains: 16 fill SSE2's registers, a 64-wide AVX-512 build needs 64
-// (the best of the two is reported).
+// One thread's vectorised chains: 24 fill SSE2's registers, AVX-512 needs 64.
 template <int N>
 double vector_chains(long iterations, double seed) {
     double a[N];
@@ -76,18 +78,43 @@ double vector_chains(long iterations, double seed) {
     return s;
 }
 
-// GFLOP/s of `chains` (per iteration `lanes` multiply-adds) on `threads` threads, best of 3.
+// GFLOP/s of `chains` (per iteration `lanes` multiply-adds) on up to `threads` threads (the
+// team's real size counted), best of 3.
 template <class F>
-double flops(F chains, int lanes, long iterations, int threads, double& sink) {
+double flops(F chains, int lanes, long iterations, [[maybe_unused]] int threads, double& sink) {
     double best = 0;
     for (int rep = 0; rep < 3; ++rep) {
         double total = 0;
+        int team = 0;
         const double t0 = now();
-        GIMLET_OMP(parallel num_threads(threads) reduction(+ : total))
-        total += chains(iterations, 1.0 + thread_id());
+        GIMLET_OMP(parallel num_threads(threads) reduction(+ : total, team))
+        {
+            total += chains(iterations, 1.0 + total);
+            team += 1;
+        }
         const double t = now() - t0;
-        best = std::max(best, 2.0 * lanes * double(iterations) * threads / t / 1e9);
+        best = std::max(best, 2.0 * lanes * double(iterations) * team / t / 1e9);
         sink += total;
+    }
+    return best;
+}
+
+// ns per call of f over independent inputs in [0.8, 1.2), one thread, best of 5.
+template <class F>
+CEILINGS_SCALAR double per_call(F f, int count, double& sink) {
+    std::vector<double> x(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) x[std::size_t(i)] = 0.8 + 0.4 * i / count;
+    double best = 1e9;
+    for (int rep = 0; rep < 5; ++rep) {
+        double s[8] = {};
+        const double t0 = now();
+        for (int i = 0; i + 8 <= count; i += 8)
+            for (int k = 0; k < 8; ++k) {
+                s[k] += f(x[std::size_t(i + k)]);
+                keep_scalar(s[k]);
+            }
+        best = std::min(best, (now() - t0) / count * 1e9);
+        for (double v : s) sink += v;
     }
     return best;
 }
@@ -115,14 +142,16 @@ double triad(double mb, [[maybe_unused]] int threads, double seconds) {
 
 int main(int argc, char** argv) try {
     bench::flags f(argc, argv);
-#if defined(_OPENMP)
-    const int threads = static_cast<int>(f.number("threads", 2));
-#else
-    const int threads = static_cast<int>(f.number("threads", 1)) > 0 ? 1 : 0;  // one thread without OpenMP
-#endif
+    const double asked = f.number("threads", 2);
     const bool quick = f.number("quick", 0) != 0;
-    if (threads < 1 || threads > 1024) throw std::invalid_argument("--threads: in [1, 1024]");
     f.finish();
+    if (!(asked >= 1 && asked <= 1024)) throw std::invalid_argument("--threads: in [1, 1024]");
+#if defined(_OPENMP)
+    const int threads = static_cast<int>(asked);
+#else
+    const int threads = 1;
+    if (asked > 1) std::printf("(built without OpenMP: one thread)\n");
+#endif
     const long iterations = quick ? 1000 : 100'000'000;
     const double seconds = quick ? 0.001 : 0.5;
     double sink = 0;
@@ -130,12 +159,19 @@ int main(int argc, char** argv) try {
     std::printf("| threads | scalar multiply-add (GFLOP/s) | vectorised multiply-add (GFLOP/s) | triad, 22 MB (GB/s) | triad, 400 MB (GB/s) |\n");
     std::printf("| --- | --- | --- | --- | --- |\n");
     for (int t : {1, threads}) {
-        std::printf("| %d | %.1f | %.1f | %.1f | %.1f |\n", t, flops(scalar_chains, 8, iterations, t, sink),
-                    std::max(flops(vector_chains<16>, 16, iterations / 2, t, sink),
-                             flops(vector_chains<64>, 64, iterations / 8, t, sink)), triad(quick ? 0.3 : 22, t, seconds),
-                    triad(quick ? 0.3 : 400, t, seconds));
+        std::printf("| %d | %.1f | %.1f | %.1f | %.1f |\n", t, flops(scalar_chains, 12, iterations, t, sink),
+                    std::max(flops(vector_chains<24>, 24, iterations / 2, t, sink),
+                             flops(vector_chains<64>, 64, iterations / 4, t, sink)),
+                    triad(quick ? 0.3 : 22, t, seconds), triad(quick ? 0.3 : 400, t, seconds));
         if (threads == 1) break;
     }
+    const int calls = quick ? 1024 : 1 << 22;
+    std::printf("\none at a time, independent inputs, one thread (ns per call): division %.2f, square root %.2f, "
+                "pow %.2f, log %.2f\n",
+                per_call([](double x) { return 1.0 / x; }, calls, sink),
+                per_call([](double x) { return std::sqrt(x); }, calls, sink),
+                per_call([](double x) { return std::pow(x, -1.1); }, calls, sink),
+                per_call([](double x) { return std::log(x); }, calls, sink));
     if (sink == 42.0) std::printf("\n");  // keeps the chains' results alive
     return 0;
 } catch (const std::exception& e) {

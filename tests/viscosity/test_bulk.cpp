@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <type_traits>
 
 namespace {
 
@@ -79,4 +80,61 @@ TEST_CASE("bulk viscosity: a wave speed given as a callable is asked for only in
         CHECK(lazy_rate == p.get<gimlet::fields::compression_rate>());
         CHECK(asked == (rate < 0 ? 1 : 0));
     }
+}
+
+namespace {
+
+// A user's viscosity written with a generic wave-speed parameter and no `lazy_sound_speed`: it
+// records what the material update gave it.
+struct generic_q {
+    static constexpr bool enabled = true;
+    using required_fields = gimlet::field_list<>;
+    inline static double seen = -1;      // the speed it was given
+    inline static bool number = false;   // whether it was a number
+    template <class Real, class C, class P>
+    Real pressure(const gimlet::point_step<Real>&, const C& c, const P&) const {
+        number = std::is_arithmetic_v<C>;
+        if constexpr (std::is_arithmetic_v<C>) seen = double(c);
+        return Real(0);
+    }
+    template <class Real, class P>
+    Real signal_speed(Real c, Real, const P&) const { return c; }
+};
+
+// One that declares the flag but takes only a number: refused by the concept (and by
+// viscosity::check, with a message).
+struct lazy_number_only {
+    static constexpr bool enabled = true;
+    static constexpr bool lazy_sound_speed = true;
+    using required_fields = gimlet::field_list<>;
+    template <class Real, class P>
+    Real pressure(const gimlet::point_step<Real>&, Real, const P&) const { return Real(0); }
+    template <class Real, class P>
+    Real signal_speed(Real c, Real, const P&) const { return c; }
+};
+
+}  // namespace
+
+static_assert(gimlet::viscosity::lazy_sound_speed<gimlet::viscosity::bulk>);
+static_assert(!gimlet::viscosity::lazy_sound_speed<generic_q>);
+static_assert(gimlet::viscosity::Viscosity<generic_q>);
+static_assert(!gimlet::viscosity::Viscosity<lazy_number_only>);
+
+// Without the flag a policy is given the number, whatever its parameter's type: the wave speed
+// of the particle as the update leaves it for the viscosity.
+TEST_CASE("viscosity: a policy without lazy_sound_speed is given the wave speed as a number", "[viscosity]") {
+    using mat_t = gimlet::material<gimlet::strength::linear_elastic, gimlet::eos::linear, gimlet::thermal::none, generic_q>;
+    const mat_t mat{1900.0, gimlet::strength::linear_elastic(4.7e9), gimlet::eos::linear(7.9e9), {},
+                    generic_q{}};
+    using store2 = gimlet::particle_store<S, gimlet::field_union_t<gimlet::core_fields<S>, mat_t::required_fields>>;
+    store2 store;
+    const auto p = store[store.add()];
+    p.get<gimlet::fields::volume0>() = 1e-6;
+    p.get<gimlet::fields::mass>() = 1900.0 * 1e-6;
+    S::matrix L = S::matrix::Zero();
+    L(1, 1) = 1e4;  // expanding: bulk would not ask, this policy is given it anyway
+    gimlet::update_material_point(mat, p, L, 1e-8, 1e-3, 0, 0.0);
+    CHECK(generic_q::number);
+    CHECK(generic_q::seen == gimlet::longitudinal_wave_speed(p, mat));
+    CHECK(generic_q::seen > 0);
 }

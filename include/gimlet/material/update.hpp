@@ -146,10 +146,12 @@ void update_material_point(const M& mat, const P& p,
     real q = 0;
     if constexpr (M::viscosity_type::enabled) {
         // The wave speed costs the EOS's tangent modulus and a square root (a `pow` for
-        // Mie-Grueneisen in compression). A viscosity that takes it as a callable asks for it
-        // only where q needs it; one that takes a number is given it (viscosity::Viscosity).
+        // Mie-Grueneisen in compression). A viscosity that declares `lazy_sound_speed` takes it
+        // as a callable and asks for it only where q needs it, from the particle as it is then
+        // (what the policy wrote to it before asking included); any other is given the number
+        // (viscosity::Viscosity).
         const auto speed = [&] { return longitudinal_wave_speed(p, mat); };
-        if constexpr (requires { mat.viscosity.pressure(st, speed, p); }) q = mat.viscosity.pressure(st, speed, p);
+        if constexpr (viscosity::lazy_sound_speed<typename M::viscosity_type>) q = mat.viscosity.pressure(st, speed, p);
         else q = mat.viscosity.pressure(st, speed(), p);
     }
     // Stress power per unit mass, midpoint in time (docs/physics.md section 1): de = dt v_mid sigma:D,

@@ -28,6 +28,7 @@ namespace gimlet::viscosity {
 class bulk {
 public:
     static constexpr bool enabled = true;
+    static constexpr bool lazy_sound_speed = true;  // q reads the wave speed only in compression
     using required_fields = field_list<fields::compression_rate>;
 
     /// \param quadratic b2 >= 0 (q's quadratic term has b2 squared); \param linear b1 >= 0.
@@ -37,8 +38,8 @@ public:
     }
 
     /// q (Pa) for the step `st` (st.length is the cell size); records the compression rate.
-    /// `sound_speed` is the wave speed, or a callable that returns it: it is then asked for only
-    /// in compression, where q reads it (the material update passes one; viscosity::Viscosity).
+    /// `sound_speed` is the wave speed, or a callable that returns it (`lazy_sound_speed`: the
+    /// material update passes one): it is then asked for only in compression, where q reads it.
     template <class Real, class C, class P>
         requires std::convertible_to<C, Real> || std::is_invocable_r_v<Real, const C&>
     [[nodiscard]] Real pressure(const point_step<Real>& st, const C& sound_speed, const P& p) const {

@@ -25,6 +25,11 @@ concept pressure_const = requires(const V& v, const point_step<double>& st, doub
     { v.pressure(st, c, p) } -> std::convertible_to<double>;
 };
 template <class V, int D>
+concept pressure_lazy = requires(const V& v, const point_step<double>& st, const detail::archetype_sound_speed& c,
+                                 const archetype_particle<D, V>& p) {
+    { v.pressure(st, c, p) } -> std::convertible_to<double>;
+};
+template <class V, int D>
 concept signal_any = requires(V& v, double c, const archetype_particle<D, V>& p) { v.signal_speed(c, c, p); };
 template <class V, int D>
 concept signal_const = requires(const V& v, double c, const archetype_particle<D, V>& p) {
@@ -52,6 +57,12 @@ consteval bool check() {
                 static_assert(check_detail::pressure_const<V, 2> && check_detail::pressure_const<V, 3>,
                               "viscosity policy: pressure must be const, take the particle as a template (2-D and "
                               "3-D stores) and return a number");
+            if constexpr (lazy_sound_speed<V>)
+                static_assert(check_detail::pressure_lazy<V, 2> && check_detail::pressure_lazy<V, 3>,
+                              "viscosity policy: declares `lazy_sound_speed = true`, so its pressure must also "
+                              "accept the wave speed as a callable (`sound_speed()` returns the number): "
+                              "`template <class Real, class C, class P> Real pressure(const "
+                              "gimlet::point_step<Real>&, const C& sound_speed, const P&) const`");
             constexpr bool signal = check_detail::signal_any<V, 2> || check_detail::signal_any<V, 3>;
             static_assert(signal,
                           "viscosity policy: needs `template <class Real, class P> Real signal_speed(Real "
