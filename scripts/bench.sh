@@ -45,21 +45,19 @@ if [ "$quick" = 1 ]; then
     sizes=(2 1)
     eff_args=(--cell 4 --steps 5 --repeats 1)
     acc_args=(--quick 1)
+    ceil_args=(--quick 1)
 else
     ref_args=(--cell 0.5 --steps 1000 --repeats 3)
     sizes=(2 1 0.5 0.25 0.125)
     eff_args=(--cell 1 --steps 300 --repeats 5)
     acc_args=()
+    ceil_args=()
 fi
 
 # The machine's ceilings (floating-point throughput and bandwidth) that docs/performance.md's
 # per-phase table compares the step with.
 load "ceilings start"
-if [ "$quick" = 1 ]; then
-    "$bin/ceilings/bench_ceilings" --quick 1 | tee "$out/ceilings.md"
-else
-    "$bin/ceilings/bench_ceilings" | tee "$out/ceilings.md"
-fi
+"$bin/ceilings/bench_ceilings" "${ceil_args[@]}" | tee "$out/ceilings.md"
 load "ceilings end / throughput start"
 {
     "$bin/throughput/bench_throughput" --header 1 --scene reference --threads 1 "${ref_args[@]}"

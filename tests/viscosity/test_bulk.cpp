@@ -84,17 +84,22 @@ TEST_CASE("bulk viscosity: a wave speed given as a callable is asked for only in
 
 namespace {
 
+// What a policy was given.
+struct given {
+    double speed = -1;    // the speed, if a number
+    bool number = false;  // whether it was a number
+};
+
 // A user's viscosity written with a generic wave-speed parameter and no `lazy_sound_speed`: it
 // records what the material update gave it.
 struct generic_q {
     static constexpr bool enabled = true;
     using required_fields = gimlet::field_list<>;
-    inline static double seen = -1;      // the speed it was given
-    inline static bool number = false;   // whether it was a number
+    given* record = nullptr;
     template <class Real, class C, class P>
     Real pressure(const gimlet::point_step<Real>&, const C& c, const P&) const {
-        number = std::is_arithmetic_v<C>;
-        if constexpr (std::is_arithmetic_v<C>) seen = double(c);
+        record->number = std::is_arithmetic_v<C>;
+        if constexpr (std::is_arithmetic_v<C>) record->speed = double(c);
         return Real(0);
     }
     template <class Real, class P>
@@ -124,8 +129,9 @@ static_assert(!gimlet::viscosity::Viscosity<lazy_number_only>);
 // of the particle as the update leaves it for the viscosity.
 TEST_CASE("viscosity: a policy without lazy_sound_speed is given the wave speed as a number", "[viscosity]") {
     using mat_t = gimlet::material<gimlet::strength::linear_elastic, gimlet::eos::linear, gimlet::thermal::none, generic_q>;
+    given record;
     const mat_t mat{1900.0, gimlet::strength::linear_elastic(4.7e9), gimlet::eos::linear(7.9e9), {},
-                    generic_q{}};
+                    generic_q{&record}};
     using store2 = gimlet::particle_store<S, gimlet::field_union_t<gimlet::core_fields<S>, mat_t::required_fields>>;
     store2 store;
     const auto p = store[store.add()];
@@ -134,7 +140,7 @@ TEST_CASE("viscosity: a policy without lazy_sound_speed is given the wave speed 
     S::matrix L = S::matrix::Zero();
     L(1, 1) = 1e4;  // expanding: bulk would not ask, this policy is given it anyway
     gimlet::update_material_point(mat, p, L, 1e-8, 1e-3, 0, 0.0);
-    CHECK(generic_q::number);
-    CHECK(generic_q::seen == gimlet::longitudinal_wave_speed(p, mat));
-    CHECK(generic_q::seen > 0);
+    CHECK(record.number);
+    CHECK(record.speed == gimlet::longitudinal_wave_speed(p, mat));
+    CHECK(record.speed > 0);
 }

@@ -9,6 +9,21 @@
 
 namespace gimlet::viscosity {
 
+/// Whether viscosity V asks for the wave speed as a callable (`lazy_sound_speed`: see
+/// viscosity::Viscosity below).
+template <class V>
+inline constexpr bool lazy_sound_speed = [] {
+    if constexpr (requires { V::lazy_sound_speed; }) return bool(V::lazy_sound_speed);
+    else return false;
+}();
+
+namespace detail {
+/// What the material update passes a `lazy_sound_speed` policy (an archetype for the checks).
+struct archetype_sound_speed {
+    double operator()() const { return 1.0; }
+};
+}  // namespace detail
+
 /// An artificial-viscosity policy.
 ///
 /// - `enabled`: false for viscosity::none. The solver removes every viscosity step with
@@ -27,20 +42,6 @@ namespace gimlet::viscosity {
 ///   stable time step, dt = C h / max_p (signal_speed + |v_p|): a viscosity damps the fastest
 ///   mode and so shortens the step (return sound_speed where q is zero). The solver calls it
 ///   before each step, from the state the last update left.
-/// Whether viscosity V asks for the wave speed as a callable (`lazy_sound_speed`, above).
-template <class V>
-inline constexpr bool lazy_sound_speed = [] {
-    if constexpr (requires { V::lazy_sound_speed; }) return bool(V::lazy_sound_speed);
-    else return false;
-}();
-
-namespace detail {
-/// What the material update passes a `lazy_sound_speed` policy (an archetype for the checks).
-struct archetype_sound_speed {
-    double operator()() const { return 1.0; }
-};
-}  // namespace detail
-
 template <class V>
 concept Viscosity = requires {
     { V::enabled } -> std::convertible_to<bool>;
