@@ -532,7 +532,12 @@ private:
     }
 
     // The partition's side of every particle at every node of its stencil, from the
-    // start-of-step state: the transfers of the whole step use them (entries).
+    // start-of-step state: the transfers of the whole step use them (entries). A template, as
+    // resolve_contact below: an explicit instantiation of the solver (docs/performance.md,
+    // "Memory, the largest scene, compile time") instantiates every member that is not, clang 14
+    // ignoring a `requires` there, and these two compile only for a partition of several fields
+    // or a multi-field contact.
+    template <int = 0>
     void choose_fields() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         sides_.resize(particles_.size());
@@ -564,6 +569,7 @@ private:
                      std::to_string(fields_per_body) + ") at a node of its stencil");
     }
 
+    template <int = 0>
     void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
 
     // A contact policy's per-particle hook (contact::ParticleHook), after the step's last

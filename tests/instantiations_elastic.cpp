@@ -1,0 +1,8 @@
+// SPDX-License-Identifier: MIT
+// The elastic half of tests/instantiations.hpp's list, defined once for every test family
+// (two files, so that the two halves compile side by side).
+#include "instantiations.hpp"
+
+#define GIMLET_TESTS_DEFINE(C, P) template class GIMLET_TESTS_SOLVER_TYPE(gimlet::elastic_material, C, P);
+#define GIMLET_TESTS_SKIP(C, P)
+GIMLET_TESTS_SHARED_SOLVERS(GIMLET_TESTS_DEFINE, GIMLET_TESTS_SKIP)
