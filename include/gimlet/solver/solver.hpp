@@ -532,11 +532,13 @@ private:
     }
 
     // The partition's side of every particle at every node of its stencil, from the
-    // start-of-step state: the transfers of the whole step use them (entries). A template, as
-    // resolve_contact below: an explicit instantiation of the solver (docs/performance.md,
-    // "Memory, the largest scene, compile time") instantiates every member that is not, clang 14
-    // ignoring a `requires` there, and these two compile only for a partition of several fields
-    // or a multi-field contact.
+    // start-of-step state: the transfers of the whole step use them (entries).
+    //
+    // This member and resolve_contact compile only for a partition of several fields or a
+    // multi-field contact, and are called only under `if constexpr`. They are templates because an
+    // explicit instantiation of the solver (docs/performance.md, "Memory, the largest scene,
+    // compile time") instantiates every member that is not one: C++20 would skip a member whose
+    // `requires` fails, clang 14 does not.
     template <int = 0>
     void choose_fields() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
