@@ -271,6 +271,10 @@ void check_front_criteria(const impact_1d::result& r) {
     CHECK(std::abs(r.energy_error) < 0.01);
     CHECK(r.rise_cells < 4.0);
     CHECK(r.front_peak_eta / r.plateau_eta - 1 <= 0.05);
+    // The same read on cell-thick layers (reported beside it): a layer's mean is never above its
+    // largest particle's.
+    CHECK(r.front_peak_eta_layers > 0);
+    CHECK(r.front_peak_eta_layers <= r.front_peak_eta);
     CHECK(r.health.total() == 0);
 }
 }  // namespace
