@@ -16,6 +16,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -464,3 +466,43 @@ TEST_CASE("uGIMP with a zero half-width degrades to linear MPM, not NaN", "[shap
 }
 
 #undef GIMLET_CHECK_WORST  // the family's files compile as one unit (docs/testing.md)
+
+// The two-axes form of the GIMP weights (weights_2d; why, at shape::detail::gimp_weights_2d)
+// must give what weights() gives axis by axis, bit for bit: the solver takes either, and the
+// outputs are byte-identical whichever it takes. Random positions and half-widths, and the
+// exact cases where a branch of the kernel turns: quarter points, l = 1/4, zeros of both signs,
+// half-widths beyond 1/2 and at 0 (clamped).
+#if defined(__GNUC__)
+TEMPLATE_TEST_CASE("GIMP weights of both axes at once are weights() axis by axis, bit for bit", "[shape][verification]",
+                   gimlet::shape::ugimp, gimlet::shape::cpgimp) {
+    std::uint64_t state = 0x9e3779b97f4a7c15ULL;
+    auto next = [&] {  // splitmix64: the same numbers on every platform
+        std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;  // [0, 1)
+    };
+    std::size_t differ = 0, cases = 0;
+    for (int k = 0; k < 200000; ++k) {
+        std::array<double, 2> x{100 * next() - 50, 100 * next() - 50}, l{0.6 * next(), 0.6 * next()};
+        if (k % 5 == 0) x[0] = 0.25 * std::floor(4 * x[0]);
+        if (k % 7 == 0) l[1] = 0.25;
+        if (k % 11 == 0) x[1] = (k % 22 == 0) ? -0.0 : 0.0;
+        if (k % 13 == 0) l[0] = 0.0;
+        std::array<int, 2> first{};
+        std::array<std::array<double, TestType::stencil>, 2> w{}, dw{};
+        TestType::weights_2d(x, l, first, w, dw);
+        for (int d = 0; d < 2; ++d) {
+            int f = 0;
+            std::array<double, TestType::stencil> ws{}, dws{};
+            TestType::weights(x[d], l[d], f, ws.data(), dws.data());
+            ++cases;
+            if (f != first[d] || std::memcmp(ws.data(), w[d].data(), sizeof ws) != 0 ||
+                std::memcmp(dws.data(), dw[d].data(), sizeof dws) != 0)
+                ++differ;
+        }
+    }
+    CHECK(cases == 400000);
+    CHECK(differ == 0);
+}
+#endif

@@ -7,6 +7,8 @@
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/shape/detail/gimp_kernel.hpp"
 
+#include <array>
+
 namespace gimlet::shape {
 
 /// cpGIMP: the GIMP weight of ugimp, with a half-width that follows the deformation, so a
@@ -23,6 +25,17 @@ struct cpgimp {
     static void weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept {
         detail::gimp_weights(x, l, first, w, dw);
     }
+
+#if defined(__GNUC__)
+    /// Both axes of a 2-D particle at once, the same numbers as weights() axis by axis, bit for
+    /// bit (an optional member: detail::stencil uses it where a shape has one; why, at
+    /// detail::gimp_weights_2d).
+    static void weights_2d(const std::array<double, 2>& x, const std::array<double, 2>& l, std::array<int, 2>& first,
+                           std::array<std::array<double, stencil>, 2>& w,
+                           std::array<std::array<double, stencil>, 2>& dw) noexcept {
+        detail::gimp_weights_2d(x, l, first, w, dw);
+    }
+#endif
 
     /// `domain_half_width_d * |F_dd| / h` per axis, in cell units, at most 1/2.
     ///

@@ -7,6 +7,7 @@
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/shape/detail/gimp_kernel.hpp"
 
+#include <array>
 #include <cmath>
 #include <concepts>
 
@@ -29,6 +30,17 @@ struct ugimp {
     static void weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept {
         detail::gimp_weights(x, l, first, w, dw);
     }
+
+#if defined(__GNUC__)
+    /// Both axes of a 2-D particle at once, the same numbers as weights() axis by axis, bit for
+    /// bit (an optional member: detail::stencil uses it where a shape has one; why, at
+    /// detail::gimp_weights_2d).
+    static void weights_2d(const std::array<double, 2>& x, const std::array<double, 2>& l, std::array<int, 2>& first,
+                           std::array<std::array<double, stencil>, 2>& w,
+                           std::array<std::array<double, stencil>, 2>& dw) noexcept {
+        detail::gimp_weights_2d(x, l, first, w, dw);
+    }
+#endif
 
     /// The particle's initial half-width in cell units: `domain_half_width / h`.
     template <class P, class Real>
