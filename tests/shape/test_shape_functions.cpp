@@ -485,8 +485,8 @@ TEMPLATE_TEST_CASE("GIMP weights of both axes at once are weights() axis by axis
     std::size_t differ = 0, cases = 0;
     for (int k = 0; k < 200000; ++k) {
         std::array<double, 2> x{100 * next() - 50, 100 * next() - 50}, l{0.6 * next(), 0.6 * next()};
-        if (k % 5 == 0) x[0] = 0.25 * std::floor(4 * x[0]);
-        if (k % 7 == 0) l[1] = 0.25;
+        if (k % 5 == 0) x[0] = 0.25 * std::floor(4 * x[0]), l[0] = 0.25;  // |r| = l, 1 - l, 1 + l exactly
+        if (k % 7 == 0) x[1] = 0.25 * std::floor(4 * x[1]), l[1] = 0.25;
         if (k % 11 == 0) x[1] = (k % 22 == 0) ? -0.0 : 0.0;
         if (k % 13 == 0) l[0] = 0.0;
         std::array<int, 2> first{};
@@ -495,6 +495,7 @@ TEMPLATE_TEST_CASE("GIMP weights of both axes at once are weights() axis by axis
         for (int d = 0; d < 2; ++d) {
             int f = 0;
             std::array<double, TestType::stencil> ws{}, dws{};
+            static_assert(std::is_same_v<typename TestType::weights_2d_shape, TestType>);
             TestType::weights(x[d], l[d], f, ws.data(), dws.data());
             ++cases;
             if (f != first[d] || std::memcmp(ws.data(), w[d].data(), sizeof ws) != 0 ||

@@ -28,8 +28,9 @@ namespace gimlet::shape {
 ///   round the wrong way.
 /// - `half_width(p, h)`: the particle's half-width per axis in cell units (zero if unused).
 /// - optional, `weights_2d(x, l, first, w, dw)` on `std::array`s of the two axes of a 2-D double
-///   particle: what `weights` gives axis by axis, bit for bit; the solver then calls it instead
-///   (ugimp and cpgimp have one; docs/concepts.md).
+///   particle, with `using weights_2d_shape = <the shape itself>`: what `weights` gives axis by
+///   axis, bit for bit; the solver then calls it instead (ugimp and cpgimp have one under g++ and
+///   clang; docs/concepts.md).
 ///
 /// \code
 /// struct nearest_node {                      // a (useless but conforming) user policy

@@ -33,8 +33,10 @@ struct ugimp {
 
 #if defined(__GNUC__)
     /// Both axes of a 2-D particle at once, the same numbers as weights() axis by axis, bit for
-    /// bit (an optional member: detail::stencil uses it where a shape has one; why, at
-    /// detail::gimp_weights_2d).
+    /// bit (an optional member: detail::stencil uses it where a shape has one and names itself in
+    /// weights_2d_shape, so that a shape derived from this one, with weights() of its own, does not
+    /// inherit it; why, at detail::gimp_weights_2d).
+    using weights_2d_shape = ugimp;
     static void weights_2d(const std::array<double, 2>& x, const std::array<double, 2>& l, std::array<int, 2>& first,
                            std::array<std::array<double, stencil>, 2>& w,
                            std::array<std::array<double, stencil>, 2>& dw) noexcept {

@@ -31,14 +31,17 @@ struct stencil {
     template <class Shape>
     void compute_with(const grid<S>& g, const vector& x, const vector& half_width) {
         // A shape that computes both axes of a 2-D particle at once (ugimp, cpgimp: faster under
-        // g++, the same numbers bit for bit) is asked for them together.
+        // g++, the same numbers bit for bit) is asked for them together. It names itself in
+        // weights_2d_shape: a shape derived from it inherits the member, not the name.
         if constexpr (dim == 2 && std::is_same_v<real, double> &&
                       requires(const std::array<double, 2>& xs, std::array<int, 2>& f, std::array<std::array<double, W>, 2>& ws) {
+                          requires std::is_same_v<typename Shape::weights_2d_shape, Shape>;
                           Shape::weights_2d(xs, xs, f, ws, ws);
                       }) {
             const std::array<double, 2> xc{(x[0] - g.spec().lower[0]) * g.inv_cell(), (x[1] - g.spec().lower[1]) * g.inv_cell()};
+            const std::array<double, 2> l{half_width[0], half_width[1]};
             std::array<int, 2> first{};
-            Shape::weights_2d(xc, {half_width[0], half_width[1]}, first, w, dw);
+            Shape::weights_2d(xc, l, first, w, dw);
             for (int d = 0; d < dim; ++d) {
                 local[d] = xc[d] - real(first[d]);
                 last_row = g.template axis_offsets<W>(d, first[d], offset[d].data());
