@@ -20,29 +20,9 @@ namespace gimlet::shape {
 ///
 /// With l_p = h/4 (2x2 particles per cell) it is the reference paper's Φ (eq-mpm-shape, see
 /// paper_phi). The 1-D function and its branches are in detail::gimp_kernel.
-struct ugimp {
+struct ugimp : detail::gimp_weights_of<ugimp> {
     static constexpr const char* name = "ugimp";  ///< for output and tables
-    static constexpr int stencil = detail::gimp_stencil;
     using required_fields = gimlet::field_list<gimlet::fields::domain_half_width>;
-
-    /// \tparam Real float or double. \pre 0 < l <= 1/2 (clamped there; see gimp_weights).
-    template <class Real>
-    static void weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept {
-        detail::gimp_weights(x, l, first, w, dw);
-    }
-
-#if defined(__GNUC__)
-    /// Both axes of a 2-D particle at once, the same numbers as weights() axis by axis, bit for
-    /// bit (an optional member: detail::stencil uses it where a shape has one and names itself in
-    /// weights_2d_shape, so that a shape derived from this one, with weights() of its own, does not
-    /// inherit it; why, at detail::gimp_weights_2d).
-    using weights_2d_shape = ugimp;
-    static void weights_2d(const std::array<double, 2>& x, const std::array<double, 2>& l, std::array<int, 2>& first,
-                           std::array<std::array<double, stencil>, 2>& w,
-                           std::array<std::array<double, stencil>, 2>& dw) noexcept {
-        detail::gimp_weights_2d(x, l, first, w, dw);
-    }
-#endif
 
     /// The particle's initial half-width in cell units: `domain_half_width / h`.
     template <class P, class Real>

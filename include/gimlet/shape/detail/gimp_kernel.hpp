@@ -100,4 +100,30 @@ inline void gimp_weights_2d(const std::array<double, 2>& x, const std::array<dou
 }
 #endif
 
+/// The members uGIMP and cpGIMP share, which differ only in their half-width: the stencil, the
+/// weights (the Shape concept's), and under g++ and clang the optional weights_2d with the name
+/// of the shape it belongs to (docs/concepts.md, "Shape"): a shape derived from ugimp or cpgimp
+/// inherits the member but not the name, so its own weights() is used.
+template <class Self>
+struct gimp_weights_of {
+    static constexpr int stencil = gimp_stencil;
+
+    /// \tparam Real float or double. \pre 0 < l <= 1/2 (clamped there; see gimp_weights).
+    template <class Real>
+    static void weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept {
+        gimp_weights(x, l, first, w, dw);
+    }
+
+#if defined(__GNUC__)
+    /// Both axes of a 2-D particle at once, the same numbers as weights() axis by axis, bit for
+    /// bit (why, at gimp_weights_2d).
+    using weights_2d_shape = Self;
+    static void weights_2d(const std::array<double, 2>& x, const std::array<double, 2>& l, std::array<int, 2>& first,
+                           std::array<std::array<double, gimp_stencil>, 2>& w,
+                           std::array<std::array<double, gimp_stencil>, 2>& dw) noexcept {
+        gimp_weights_2d(x, l, first, w, dw);
+    }
+#endif
+};
+
 }  // namespace gimlet::shape::detail
