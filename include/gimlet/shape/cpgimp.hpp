@@ -7,8 +7,6 @@
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/shape/detail/gimp_kernel.hpp"
 
-#include <array>
-
 namespace gimlet::shape {
 
 /// cpGIMP: the GIMP weight of ugimp, with a half-width that follows the deformation, so a

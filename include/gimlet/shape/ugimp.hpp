@@ -7,7 +7,6 @@
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/shape/detail/gimp_kernel.hpp"
 
-#include <array>
 #include <cmath>
 #include <concepts>
 

@@ -64,7 +64,8 @@ inline void gimp_weights(Real x, Real l, int& first, Real* w, Real* dw) noexcept
 
 #if defined(__GNUC__)  // g++ and clang: their vector types (no header, no flag)
 /// gimp_weights for both axes of a 2-D particle at once, the axes in the two lanes of one
-/// 16-byte vector: the same expressions lane by lane, so the same numbers bit for bit (tested,
+/// 16-byte vector: gimp_kernel's formula (docs/physics.md section 2; Bardenhagen & Kober 2004),
+/// the same expressions lane by lane, so the same numbers bit for bit (tested,
 /// in the build the test runs in: a build that contracts products and sums into FMAs, such as
 /// g++ with -march=native, may fuse the two forms differently).
 /// Why: g++ 12 compiles gimp_kernel's max and clamp into a compare and a jump each (13 jumps
