@@ -186,12 +186,15 @@ public:
     [[nodiscard]] double bulk_shock_temperature() const { return bulk_; }
 
     /// What is tracked every step (the jet's landing can be shorter than a sample interval):
-    /// the hot spot, the hottest particle, the largest compression and the hot material.
+    /// the hot spot, the hottest particle, the largest compression and the hot material. With
+    /// `peak_so_far` (K), the hot spot is sought only where it could beat that peak (a disc no
+    /// hotter reads as -infinity; diagnostics::hot_spot's `above`): the tracked peak is the same,
+    /// and the disc search skips what cannot matter to it.
     template <class Solver>
-    sample peaks(const Solver& sol) const {
+    sample peaks(const Solver& sol, double peak_so_far = -std::numeric_limits<double>::infinity()) const {
         sample r;
         r.time = double(sol.time());
-        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius);
+        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius, peak_so_far);
         r.hot_spot = hs.temperature;
         r.hot_spot_centre = hs.centre;
         r.max_temperature = hs.max_temperature;

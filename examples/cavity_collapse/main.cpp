@@ -265,7 +265,7 @@ int run(const settings& s, const run_files& io) {
     auto samples = gimlet::diagnostics::every_time(s.sample_every, take_sample);
     // The hot spot's peak and the hot material every step: a jet's landing can be shorter than
     // a sample interval (0.1 us at 0.25 mm cells).
-    auto peaks = gimlet::diagnostics::every_steps(1, [&](const auto& so) { sum.track(mon.peaks(so)); });
+    auto peaks = gimlet::diagnostics::every_steps(1, [&](const auto& so) { sum.track(mon.peaks(so, sum.max_hot_spot)); });
     auto write_snapshot = [&](const auto& so) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);

@@ -5,8 +5,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -191,7 +193,33 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
         CHECK(r.temperature == Approx(best).epsilon(1e-12));
         CHECK(at_centre == Approx(r.temperature).epsilon(1e-12));
         CHECK(count == r.particles);
+        // Sought above a running peak: below the hottest disc, the same disc bit for bit; at
+        // it or above, nothing hotter (a peak tracked with it moves exactly as without it).
+        for (const double above : {300.0, best - 1.0, std::nextafter(r.temperature, 0.0)}) {
+            const auto a = gimlet::diagnostics::hot_spot(sol, radius, above);
+            INFO("above " << above);
+            CHECK(a.temperature == r.temperature);
+            CHECK(a.centre == r.centre);
+            CHECK(a.particles == r.particles);
+            CHECK(a.max_temperature == r.max_temperature);
+        }
+        for (const double above : {r.temperature, best + 1.0, 1e9}) {
+            const auto a = gimlet::diagnostics::hot_spot(sol, radius, above);
+            INFO("above " << above);
+            CHECK_FALSE(a.temperature > above);
+            CHECK(a.max_temperature == r.max_temperature);
+        }
     }
+    // A field cooler than the peak everywhere: no disc is sought, and none is named.
+    double hottest = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        ps[i].get<temperature>() = 300.0 + 0.001 * double(i % 7);
+        hottest = std::max(hottest, ps[i].get<temperature>());
+    }
+    const auto none = gimlet::diagnostics::hot_spot(sol, 0.75e-3, 400.0);
+    CHECK(none.temperature == -std::numeric_limits<double>::infinity());
+    CHECK(none.particles == 0);
+    CHECK(none.max_temperature == hottest);
 }
 
 TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties to the lowest index", "[diagnostics][threads]") {

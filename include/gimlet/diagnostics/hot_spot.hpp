@@ -31,8 +31,15 @@ struct hot_spot_result {
 /// centres lie within `radius` (m) of c; the largest such mean is the hot-spot temperature.
 /// Ties go to the lowest particle index. Needs the temperature field (a thermal policy that is
 /// on). Discs are not wrapped across periodic boundaries.
+///
+/// `above` (K) is for a caller that tracks a running peak: only discs hotter than it are
+/// sought, so the centres that cannot hold one are skipped (before a hot spot forms, few
+/// centres can be skipped otherwise). A result hotter than `above` is the hottest disc, the
+/// same as without it; otherwise no disc is hotter than `above`, and the result names some
+/// cooler disc, or none (temperature -infinity, no particles). max_temperature is always the
+/// hottest particle.
 template <class Solver>
-[[nodiscard]] auto hot_spot(const Solver& s, double radius) {
+[[nodiscard]] auto hot_spot(const Solver& s, double radius, double above = -std::numeric_limits<double>::infinity()) {
     static_assert(Solver::store_type::template has<fields::temperature>,
                   "hot_spot needs particle temperatures: use a thermal policy that is on");
     require_positive("hot-spot radius (m)", radius);
@@ -62,8 +69,10 @@ template <class Solver>
         for (int d = dim - 1; d >= 0; --d) k = k * bins[d] + b[d];
         return k;
     };
-    // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
-    std::vector<std::size_t> start(total + 1, 0), order(n);
+    // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a disc
+    // sums is copied in that order (position, mass, mass times temperature), so that a disc
+    // reads its bins' particles contiguously; the products are those the sums would form.
+    std::vector<std::size_t> start(total + 1, 0);
     std::vector<std::size_t> bin(n);
     std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
     for (std::size_t i = 0; i < n; ++i) {
@@ -72,9 +81,16 @@ template <class Solver>
         ++start[bin[i] + 1];
     }
     for (std::size_t k = 0; k < total; ++k) start[k + 1] += start[k];
+    std::vector<vector> sorted_x(n);
+    std::vector<double> sorted_m(n), sorted_mT(n);
     {
         std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) order[fill[bin[i]]++] = i;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t j = fill[bin[i]]++;
+            sorted_x[j] = x[i];
+            sorted_m[j] = double(m[i]);
+            sorted_mT[j] = double(m[i]) * double(T[i]);
+        }
     }
 
     // f(k) for each of the 3^dim bins around particle i's, in a fixed order.
@@ -102,23 +118,24 @@ template <class Solver>
     auto disc = [&](std::size_t i, std::size_t& count) {
         double mass = 0, heat = 0;
         count = 0;
+        const vector c = x[i];
         around(i, [&](std::size_t k) {
             for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
-                const std::size_t q = order[j];
-                if (double((x[q] - x[i]).squaredNorm()) > r2) continue;
-                mass += double(m[q]);
-                heat += double(m[q]) * double(T[q]);
+                if (double((sorted_x[j] - c).squaredNorm()) > r2) continue;
+                mass += sorted_m[j];
+                heat += sorted_mT[j];
                 ++count;
             }
         });
         return heat / mass;
     };
     // A disc's mean is at most the hottest particle of the 3^dim bins around its centre, so a
-    // centre whose bins are all cooler than the disc around the hottest particle cannot hold
-    // the hottest disc (nor tie with it) and is skipped: the result is that of trying every
-    // centre, at O(n) cost where the hot material is small. "Cooler" keeps a margin of 1e-9 of
-    // the floor: a computed mean of equal temperatures can round a few ulps above them, and
-    // without the margin every centre, the hottest particle's own included, could be skipped.
+    // centre whose bins are all cooler than the disc around the hottest particle (or than
+    // `above`, whichever is hotter) cannot hold the hottest disc (nor tie with it) and is
+    // skipped: the result is that of trying every centre, at O(n) cost where the hot material
+    // is small. "Cooler" keeps a margin of 1e-9 of that floor: a computed mean of equal
+    // temperatures can round a few ulps above them, and without the margin every centre, the
+    // hottest particle's own included, could be skipped.
     std::vector<double> bin_max(total, -std::numeric_limits<double>::infinity());
     std::size_t hottest = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -127,7 +144,7 @@ template <class Solver>
     }
     r.max_temperature = std::max(0.0, double(T[hottest]));
     std::size_t unused = 0;
-    const double floor = disc(hottest, unused);
+    const double floor = std::max(disc(hottest, unused), above);
     const double margin = 1e-9 * std::abs(floor);
     // The centres are tried in parallel on the solver's threads (where the temperatures are
     // nearly uniform, before a hot spot forms, few are skipped). The hottest disc, ties to the
