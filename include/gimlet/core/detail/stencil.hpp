@@ -42,21 +42,23 @@ struct stencil {
             const std::array<double, 2> l{half_width[0], half_width[1]};
             std::array<int, 2> first{};
             Shape::weights_2d(xc, l, first, w, dw);
-            for (int d = 0; d < dim; ++d) {
-                local[d] = xc[d] - real(first[d]);
-                last_row = g.template axis_offsets<W>(d, first[d], offset[d].data());
-                for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
-            }
+            for (int d = 0; d < dim; ++d) finish_axis(g, d, xc[d], first[d]);
             return;
         }
         for (int d = 0; d < dim; ++d) {
             const real xc = (x[d] - g.spec().lower[d]) * g.inv_cell();
             int first = 0;
             Shape::weights(xc, half_width[d], first, w[d].data(), dw[d].data());
-            local[d] = xc - real(first);
-            last_row = g.template axis_offsets<W>(d, first, offset[d].data());
-            for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
+            finish_axis(g, d, xc, first);
         }
+    }
+
+    /// What follows an axis's weights: the position in the stencil, the nodes' storage offsets,
+    /// and the gradients from cell units to 1/m.
+    void finish_axis(const grid<S>& g, int d, real xc, int first) {
+        local[d] = xc - real(first);
+        last_row = g.template axis_offsets<W>(d, first, offset[d].data());
+        for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
     }
 
     /// Call f(node, weight, r) for every node of the stencil, in for_each's order, where
