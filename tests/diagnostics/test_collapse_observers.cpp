@@ -209,6 +209,13 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
             CHECK_FALSE(a.temperature > above);
             CHECK(a.max_temperature == r.max_temperature);
         }
+        // NaN is ignored; +infinity skips no centre: both give the disc the default gives.
+        for (const double above : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+            const auto a = gimlet::diagnostics::hot_spot(sol, radius, above);
+            INFO("above " << above);
+            CHECK(a.temperature == r.temperature);
+            CHECK(a.centre == r.centre);
+        }
     }
     // A field cooler than the peak everywhere: no disc is sought, and none is named.
     double hottest = 0;
@@ -255,6 +262,16 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
         for (std::size_t k = 1; k < runs.size(); ++k) {
             const auto r = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3);
             INFO("temperatures " << kind << ", threads " << k + 1);
+            CHECK(r.temperature == one.temperature);
+            CHECK(r.centre == one.centre);
+            CHECK(r.particles == one.particles);
+        }
+        // Sought above a running peak just under the hottest disc (the centres then skipped
+        // in parallel): the same disc on every thread count.
+        const double peak = std::nextafter(one.temperature, 0.0);
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            const auto r = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3, peak);
+            INFO("temperatures " << kind << ", threads " << k + 1 << ", above the peak");
             CHECK(r.temperature == one.temperature);
             CHECK(r.centre == one.centre);
             CHECK(r.particles == one.particles);

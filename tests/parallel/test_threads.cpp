@@ -102,8 +102,8 @@ TEST_CASE("results do not depend on the thread count", "[core][threads]") {
 }
 
 // The node loops (clearing the nodal arrays, nodal velocities, the momentum update) go parallel
-// only on grids of 131,072 entries and more: the same disks with 2 units of empty grid on
-// every side (400 x 400 cells with their ghost nodes, two fields: over 300,000 entries).
+// only on grids of 16,384 entries and more: the same disks with 2 units of empty grid on every
+// side (400 x 400 cells with their ghost nodes, two fields: over 300,000 entries).
 TEST_CASE("results do not depend on the thread count: a grid large enough for parallel node loops", "[core][threads]") {
     using gimlet::contact::bardenhagen;
     check_same(disks<bardenhagen>(1, gimlet::update_scheme::musl, 0, 2.0),

@@ -37,7 +37,8 @@ struct hot_spot_result {
 /// centres can be skipped otherwise). A result hotter than `above` is the hottest disc, the
 /// same as without it; otherwise no disc is hotter than `above`, and the result names some
 /// cooler disc, or none (temperature -infinity, no particles). max_temperature is always the
-/// hottest particle.
+/// hottest particle. A NaN `above` is ignored (as -infinity); with +infinity (its margin is then
+/// infinite too) no centre is skipped at all and the hottest disc is returned.
 template <class Solver>
 [[nodiscard]] auto hot_spot(const Solver& s, double radius, double above = -std::numeric_limits<double>::infinity()) {
     static_assert(Solver::store_type::template has<fields::temperature>,
@@ -71,7 +72,9 @@ template <class Solver>
     };
     // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a disc
     // sums is copied in that order (position, mass, mass times temperature), so that a disc
-    // reads its bins' particles contiguously; the products are those the sums would form.
+    // reads its bins' particles contiguously; the products are those the sums formed before
+    // (where the compiler does not contract them into multiply-adds, as in a portable x86-64
+    // build; a native build may differ in the last bits, as it does anyway).
     std::vector<std::size_t> start(total + 1, 0);
     std::vector<std::size_t> bin(n);
     std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis

@@ -249,10 +249,11 @@ private:
     // Every particle's result is independent of which thread runs it, so this costs no
     // determinism.
     static constexpr int particle_chunk = 512;
-    // The same for loops over grid nodes, whose bodies cost a few nanoseconds each: a team pays
-    // for itself from about 16,000 entries (a pass over them takes some 30 us, waking a sleeping
-    // thread a few). At 32 times the particles' threshold the HMX scene's 79,000 entries ran
-    // serially, and its 2-thread step was 0.93 of that with this one (docs/performance.md).
+    // The same for loops over grid nodes, whose bodies cost a few nanoseconds each: a pass over
+    // 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the particles'
+    // threshold the HMX scene's 79,000 entries ran serially; with this one its 2-thread run took
+    // 0.90 of the time, whole process, and scenes of 20,000 entries lost nothing
+    // (docs/performance.md).
     static constexpr std::ptrdiff_t node_parallel_threshold = 4 * parallel_threshold;
 
     // Where particle i's mass goes in the nodal arrays (fields x nodes) at each node of its
