@@ -32,12 +32,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <optional>
 #include <type_traits>
@@ -255,17 +257,24 @@ int run(const settings& s, const run_files& io) {
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
     std::fflush(stdout);
 
+    // The last sample and its step: the per-step tracking below takes its peaks from it at that
+    // step instead of searching the hot spot a second time.
+    sample sampled;
+    std::uint64_t sampled_step = std::numeric_limits<std::uint64_t>::max();
     auto take_sample = [&](const auto& so) {
         const sample r = mon.measure(so);
         write_row(series, r, s);
         sum.add(r, s);
         ++rows;
         last_sample = double(so.time());
+        sampled = r, sampled_step = so.steps();
     };
     auto samples = gimlet::diagnostics::every_time(s.sample_every, take_sample);
     // The hot spot's peak and the hot material every step: a jet's landing can be shorter than
-    // a sample interval (0.1 us at 0.25 mm cells).
-    auto peaks = gimlet::diagnostics::every_steps(1, [&](const auto& so) { sum.track(mon.peaks(so, sum.max_hot_spot)); });
+    // a sample interval (0.1 us at 0.25 mm cells). Called after the samples (run_until below).
+    auto peaks = gimlet::diagnostics::every_steps(1, [&](const auto& so) {
+        sum.track(so.steps() == sampled_step ? sampled : mon.peaks(so, sum.max_hot_spot));
+    });
     auto write_snapshot = [&](const auto& so) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);
@@ -301,8 +310,8 @@ int run(const settings& s, const run_files& io) {
     // and a summary that says where it stopped; the exit status tells scripts it did not finish.
     std::string status = "completed";
     try {
-        if (io.quiet) sol.run_until(s.end, peaks, samples, snapshots, listed, ckpt);
-        else sol.run_until(s.end, peaks, samples, snapshots, listed, ckpt, bar);
+        if (io.quiet) sol.run_until(s.end, samples, peaks, snapshots, listed, ckpt);
+        else sol.run_until(s.end, samples, peaks, snapshots, listed, ckpt, bar);
     } catch (const gimlet::numerical_error& e) {
         status = std::string("stopped: ") + e.what();
         std::replace(status.begin(), status.end(), ',', ';');  // one CSV cell
