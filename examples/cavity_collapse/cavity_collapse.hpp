@@ -187,9 +187,9 @@ public:
 
     /// What is tracked every step (the jet's landing can be shorter than a sample interval):
     /// the hot spot, the hottest particle, the largest compression and the hot material. With
-    /// `peak_so_far` (K), the hot spot is sought only where it could beat that peak (a disc no
-    /// hotter reads as no hotter than the peak; diagnostics::hot_spot's `above`): the tracked peak is the same,
-    /// and the disc search skips what cannot matter to it.
+    /// `peak_so_far` (K), the hot spot is sought only where it could beat that peak
+    /// (diagnostics::hot_spot's `above`; a result no hotter than it names no particular disc):
+    /// the tracked peak is the same, and the search skips what cannot matter to it.
     template <class Solver>
     sample peaks(const Solver& sol, double peak_so_far = -std::numeric_limits<double>::infinity()) const {
         sample r;

@@ -109,7 +109,7 @@ struct result {
     double plateau_eta = 0;         // mean 1 - J over the plateau
     double plateau_plastic_heat = 0;// K, mean plastic work / c_v over the plateau
     double front_peak_eta = 0;      // largest 1 - J between the plateau and the front
-    double front_peak_eta_layers = 0;  // the same over layers one cell thick at rest: the largest mean 1 - J of a layer's particles
+    double front_peak_eta_layers = 0;  // the same over cell-thick layers at rest: the largest layer mean of 1 - J
     double rise_cells = 0;          // 10-90 % rise of sigma_yy at the front, in cells
     gimlet::health_events health;   // the silent guards that acted (solver::health)
     double shock_speed = 0;         // m/s, relative to the material ahead of it
