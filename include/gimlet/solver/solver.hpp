@@ -672,6 +672,12 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_;
     std::vector<std::uint8_t> cm_lumped_;
+    // Per particle, found in the first iteration for the others: its entries in stencil order,
+    // its weight on the nodes above the cut-off, and how it scatters its share.
+    enum cm_scatter : std::uint8_t { cm_all_heavy, cm_some_light, cm_held };
+    std::vector<std::uint32_t> cm_entry_;
+    std::vector<real> cm_heavy_;
+    std::vector<std::uint8_t> cm_kind_;
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
     // them; per particle the gathered values, the weight on the nodes above the cut-off and the
