@@ -87,6 +87,33 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         // sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps momentum where a
         // particle also reaches a light node.
         fill_entries(cm_product_, vector::Zero());
+        // Particle i's share of M a from its list (recorded in the first iteration), given its
+        // gathered sum_j S_jp a_j: the same operands in the same order as the chooser's path.
+        auto scatter_listed = [&](std::size_t i, const vector& ap) {
+            const std::uint32_t* list = &cm_entry_[i * sn];
+            const auto& st = stencils_[i];
+            const real heavy = cm_heavy_[i];
+            switch (cm_kind_[i]) {
+                case cm_all_heavy: {
+                    const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+                    st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
+                    break;
+                }
+                case cm_some_light: {
+                    const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+                    st.for_each([&](std::size_t, real w, const vector&) {
+                        const std::size_t e = *list++;
+                        if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
+                    });
+                    break;
+                }
+                default:  // cm_held
+                    st.for_each([&](std::size_t, real w, const vector&) {
+                        const std::size_t e = *list++;
+                        if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
+                    });
+            }
+        };
         // The first iteration (every one where the lists are not kept) finds each particle's
         // entries through the partition's chooser, and records them where `Record`.
         auto first = [&]<bool Record>(std::size_t i) {
@@ -107,6 +134,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             if constexpr (Record) {
                 cm_heavy_[i] = heavy;
                 cm_kind_[i] = held ? cm_held : all_heavy ? cm_all_heavy : cm_some_light;
+                scatter_listed(i, ap);
+                return;
             }
             // m_p a_p over that weight (none where the particle reaches no such node)
             const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
@@ -127,31 +156,9 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             // The same sums from the lists, with the same operands in the same order.
             for_each_particle_by_slab([&](std::size_t i) {
                 const std::uint32_t* list = &cm_entry_[i * sn];
-                const auto& st = stencils_[i];
                 vector ap = vector::Zero();
-                st.for_each([&](std::size_t, real w, const vector&) { ap += w * cm_accel_[*list++]; });
-                list = &cm_entry_[i * sn];
-                const real heavy = cm_heavy_[i];
-                switch (cm_kind_[i]) {
-                    case cm_all_heavy: {
-                        const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                        st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
-                        break;
-                    }
-                    case cm_some_light: {
-                        const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                        st.for_each([&](std::size_t, real w, const vector&) {
-                            const std::size_t e = *list++;
-                            if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
-                        });
-                        break;
-                    }
-                    default:
-                        st.for_each([&](std::size_t, real w, const vector&) {
-                            const std::size_t e = *list++;
-                            if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
-                        });
-                }
+                stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * cm_accel_[*list++]; });
+                scatter_listed(i, ap);
             });
         }
         GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
