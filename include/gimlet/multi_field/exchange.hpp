@@ -66,7 +66,9 @@ public:
     // nodes take part in contact, and the masses do not change within a step. Field f belongs
     // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
     // each node of its stencil in turn, the index of the field entry its mass went to there
-    // (field * nodes + node).
+    // (field * nodes + node). for_each_particle(rows, f) calls f(i) for every particle whose
+    // stencil reaches a node row r (of the last axis) with rows[r] != 0, slab by slab as the
+    // scatter does (it may call it for others too).
     //
     // The pass over every node runs in blocks of nodes, on `threads` threads where `parallel`:
     // each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
@@ -158,9 +160,14 @@ public:
         slip_fraction_.assign(shared_pair_normal_.size(), real(0));
         engaged_.assign(shared_.size(), 0);
         if (shared_.empty()) return;
+        // The node rows of the last axis that hold a shared node: for_each_particle may skip
+        // the particles whose stencils reach none of them.
+        const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
+        shared_row_.assign(rows, 0);
+        for (const shared_node& sn : shared_) shared_row_[sn.node / (nodes / rows)] = 1;
         // Particles of one node are visited by one thread at a time (slab colouring), and a
         // maximum does not depend on the order: the result is the same for any thread count.
-        for_each_particle([&](std::size_t i) {
+        for_each_particle(shared_row_, [&](std::size_t i) {
             auto entry = entries_of(i);
             stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, real w, const vector& r) {
                 const std::size_t e = entry(node);  // asked at every node, in order
@@ -312,6 +319,7 @@ private:
     };
     std::vector<vector> mass_gradient_;
     std::vector<std::ptrdiff_t> shared_index_;
+    std::vector<std::uint8_t> shared_row_;  // per node row of the last axis: whether it has a shared node
     std::vector<shared_node> shared_;
     // Per block of nodes in find_shared_nodes: its shared nodes, fields and pairs (then its
     // offsets), and its first node shared by more fields than a node view holds.

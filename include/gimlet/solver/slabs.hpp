@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace gimlet::detail {
@@ -30,6 +31,7 @@ public:
         // The last slab takes the remainder (between SlabRows and 2 SlabRows - 1 rows), so
         // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
         slabs_ = std::max(1, rows / SlabRows);
+        rows_ = rows, periodic_ = periodic;
         for (auto& c : colour_slabs_) c.clear();
         for (int s = 0; s < slabs_; ++s) {
             const bool wraps_onto_first = periodic && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
@@ -86,7 +88,32 @@ public:
     /// f(i) for every particle, slab by slab and colour by colour, on `threads` threads if
     /// `parallel`. f must not throw.
     template <class F>
-    void for_each([[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
+    void for_each(bool parallel, int threads, F&& f) const {
+        for_each_kept(nullptr, parallel, threads, std::forward<F>(f));
+    }
+
+    /// for_each over the slabs whose particles' stencils can reach a node row r (of the last
+    /// axis) with rows[r] != 0 (`rows`: a flag per row, set_up's count); the other slabs'
+    /// particles are skipped. Every particle in a kept slab is visited, in for_each's order.
+    template <class F>
+    void for_each_reaching(const std::vector<std::uint8_t>& rows, bool parallel, int threads, F&& f) {
+        keep_.assign(std::size_t(slabs_), 0);
+        for (int s = 0; s < slabs_; ++s) {
+            // A particle's stencil starts in one of its slab's rows and spans at most
+            // SlabRows + 1 rows, so it ends before the slab's end plus SlabRows.
+            const int first = s * SlabRows, end = (s == slabs_ - 1 ? rows_ : first + SlabRows) + SlabRows;
+            for (int r = first; r < end && !keep_[std::size_t(s)]; ++r) {
+                if (r >= rows_ && !periodic_) break;
+                keep_[std::size_t(s)] = rows[std::size_t(r % rows_)];
+            }
+        }
+        for_each_kept(keep_.data(), parallel, threads, std::forward<F>(f));
+    }
+
+private:
+    // for_each over the slabs s with keep[s] != 0 (all where keep is null).
+    template <class F>
+    void for_each_kept(const std::uint8_t* keep, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
         GIMLET_OMP(parallel num_threads(threads) if (parallel))
         for (const auto& slabs : colour_slabs_) {
             const auto count = static_cast<std::ptrdiff_t>(slabs.size());
@@ -94,13 +121,15 @@ public:
             GIMLET_OMP(for schedule(dynamic, 1))
             for (std::ptrdiff_t j = 0; j < count; ++j) {
                 const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                if (keep && !keep[s]) continue;
                 for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
             }
         }
     }
 
-private:
-    int slabs_ = 1;
+    int slabs_ = 1, rows_ = 1;
+    bool periodic_ = false;
+    std::vector<std::uint8_t> keep_;  // for_each_reaching's slabs
     std::vector<std::uint32_t> slab_of_;  // each particle's slab
     std::vector<std::size_t> slab_start_, slab_particles_;
     std::vector<std::size_t> block_cursor_;  // per block of particles and slab: a count, then a cursor

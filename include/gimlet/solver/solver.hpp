@@ -507,7 +507,11 @@ private:
     void find_shared_nodes() {
         exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
                                     [&](std::size_t i) { return entries(i); },
-                                    [&](auto&& f) { for_each_particle_by_slab(f); }, threads(),
+                                    [&](const std::vector<std::uint8_t>& rows, auto&& f) {
+                                        slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold,
+                                                                 threads(), f);
+                                    },
+                                    threads(),
                                     std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
     }
 
