@@ -145,9 +145,12 @@ struct self_contact {
             return c;
         };
         constexpr double none = -1;
+        const double inf = std::numeric_limits<double>::infinity();
         best_.resize(entries), best_particle_.resize(entries);
+        front_along_.resize(entries), front_against_.resize(entries);
         view.for_each_index(entries, [&](std::size_t e) {
             best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
+            front_along_[e] = -inf, front_against_[e] = inf;
         });
         // Pass 1: the reference direction of each node and body (largest S m |n|, ties to the
         // lower particle index, so the choice does not depend on the order of the sum).
@@ -162,9 +165,6 @@ struct self_contact {
                 if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
             });
         });
-        const double inf = std::numeric_limits<double>::infinity();
-        front_along_.resize(entries), front_against_.resize(entries);
-        view.for_each_index(entries, [&](std::size_t e) { front_along_[e] = -inf, front_against_[e] = inf; });
         // Pass 2: the fronts of the particles facing along e and against it.
         view.for_each_particle_by_slab([&](std::size_t i) {
             const real a = normal0[i].norm();
@@ -186,10 +186,13 @@ struct self_contact {
         // beyond the one facing along it: a gap between two faces, not the two faces of a
         // ligament.
         split_.resize(entries);
+        mid_.resize(entries), reference_.resize(entries * std::size_t(dim));
         std::atomic<bool> candidates{false};
         view.for_each_index(entries, [&](std::size_t e) {
             split_[e] = front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e];
             if (split_[e]) candidates.store(true, std::memory_order_relaxed);
+            mid_[e] = 0.0;
+            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = 0.0;
         });
         const bool any = candidates.load();
         // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in
@@ -209,20 +212,21 @@ struct self_contact {
                 });
             });
         }
-        mid_.resize(entries), reference_.resize(entries * std::size_t(dim));
+        // The split nodes' planes (without a candidate every entry is 0 already, mid_ and
+        // reference_ too).
         std::atomic<std::size_t> split_count{0};
-        view.for_each_index(entries, [&](std::size_t e) {
-            mid_[e] = 0.0;
-            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = 0.0;
-            if (split_[e] != 1) {
-                split_[e] = 0;
-                return;
-            }
-            split_count.fetch_add(1, std::memory_order_relaxed);
-            mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
-            const vector ref = current(best_particle_[e]).normalized();
-            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
-        });
+        if (any) {
+            view.for_each_index(entries, [&](std::size_t e) {
+                if (split_[e] != 1) {
+                    split_[e] = 0;
+                    return;
+                }
+                split_count.fetch_add(1, std::memory_order_relaxed);
+                mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
+                const vector ref = current(best_particle_[e]).normalized();
+                for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+            });
+        }
         split_nodes_ = split_count.load();
         nodes_ = nodes;
         grid_length_.assign(std::size_t(dim), 0.0);
