@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// core/grid.hpp: the default boundaries, and what they do to a body that reaches the grid's end.
+// core/grid.hpp: the default boundaries, and what they do to a body that reaches the grid's end;
+// the periodic wrap; a node's layer along the last axis.
 #include <gimlet/gimlet.hpp>
 
 #include <catch2/catch.hpp>
@@ -56,4 +57,31 @@ TEST_CASE("grid: a periodic axis wraps near and far positions into the domain", 
     g.wrap(p);
     CHECK(p[0] == 0.7e-3 - 1.5e-3);
     CHECK(p[1] == -0.2e-3 + 1.5e-3);
+}
+
+// layer(index), which the contact's reach pass uses to find the slabs it must visit, is the
+// node's storage index along the last axis, in 2-D and 3-D, with and without periodic axes.
+TEST_CASE("grid: a node's layer is its storage index along the last axis", "[core]") {
+    auto check = [](const auto& g) {
+        for (std::size_t n = 0; n < g.size(); ++n) {
+            const auto idx = g.unflatten(n);
+            REQUIRE(g.layer(n) == idx.back());
+        }
+    };
+    using S2 = gimlet::space<2>;
+    gimlet::grid_spec<S2> g2;
+    g2.upper = S2::vector(5e-3, 3e-3);
+    g2.cell = 1e-3;
+    check(gimlet::grid<S2>(g2, 3));
+    g2.bc = {gimlet::boundary::free, gimlet::boundary::periodic};
+    check(gimlet::grid<S2>(g2, 3));
+    using S3 = gimlet::space<3>;
+    gimlet::grid_spec<S3> g3;
+    g3.upper = S3::vector(4e-3, 3e-3, 5e-3);
+    g3.cell = 1e-3;
+    check(gimlet::grid<S3>(g3, 4));
+    g3.bc = {gimlet::boundary::periodic, gimlet::boundary::free, gimlet::boundary::periodic};
+    const gimlet::grid<S3> periodic3(g3, 4);
+    check(periodic3);
+    CHECK(periodic3.layer(periodic3.size() - 1) == periodic3.nodes(2) - 1);
 }

@@ -213,6 +213,12 @@ public:
     /// Global node index along axis d of a storage index.
     [[nodiscard]] int node_of(int d, int storage) const noexcept { return storage - offset_[d]; }
 
+    /// The storage index along the last axis of the node stored at `index` (the solver's
+    /// scatter cuts the grid into slabs of such layers): unflatten(index)[dim - 1].
+    [[nodiscard]] int layer(std::size_t index) const noexcept {
+        return static_cast<int>(index / static_cast<std::size_t>(stride_[dim - 1]));
+    }
+
     /// Multi-index (per-axis storage indices) of a flat node index.
     [[nodiscard]] std::array<int, dim> unflatten(std::size_t flat) const noexcept {
         std::array<int, dim> idx{};

@@ -28,9 +28,10 @@ template <class P>
     using real = typename S::real;
     typename S::tensor3 s;
     if constexpr (S::dim == 2) {
-        // Entry by entry into the result: built by embed3 and moved, the tensor was stored in
-        // 8-byte halves and read back in 16-byte ones that straddle them, which the CPU cannot
-        // forward from its store buffer (about 2 % of an HMX step, by perf).
+        // Entry by entry into the result: built by embed3 and moved, g++ 12 stored the tensor
+        // in 8-byte halves and read it back in 16-byte loads that straddle them, which the CPU
+        // cannot forward from its store buffer (docs/performance.md, "Four byte-identical
+        // levers").
         const auto& a = p.template get<fields::stress>();
         s(0, 0) = a(0, 0), s(1, 0) = a(1, 0), s(2, 0) = real(0);
         s(0, 1) = a(0, 1), s(1, 1) = a(1, 1), s(2, 1) = real(0);

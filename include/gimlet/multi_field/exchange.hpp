@@ -164,7 +164,7 @@ public:
         // the particles whose stencils reach none of them.
         const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
         shared_row_.assign(rows, 0);
-        for (const shared_node& sn : shared_) shared_row_[sn.node / (nodes / rows)] = 1;
+        for (const shared_node& sn : shared_) shared_row_[std::size_t(grid.layer(sn.node))] = 1;
         // Particles of one node are visited by one thread at a time (slab colouring), and a
         // maximum does not depend on the order: the result is the same for any thread count.
         for_each_particle(shared_row_, [&](std::size_t i) {

@@ -69,15 +69,43 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const auto& mass = particles_.template column<fields::mass>();
     // What the iterations share, found in the first: each particle's node entries in its
     // stencil's order (the partition's choice of field made once, not once per iteration), its
-    // weight on the nodes above the cut-off, and how its share is scattered (cm_kind). Entry
-    // numbers fit 32 bits for any grid that fits in memory; the lists are kept only if they do.
+    // weight on the nodes above the cut-off, and how its share is scattered (cm_scatter). The
+    // solver refuses the consistent mass on a grid whose entries do not fit 32 bits.
     constexpr std::size_t sn = stencil_type::nodes;
-    const bool listed = iterations > 1 && ne <= std::size_t(UINT32_MAX);
-    if (listed) {
-        cm_entry_.resize(particles_.size() * sn);
-        cm_heavy_.resize(particles_.size());
-        cm_kind_.resize(particles_.size());
-    }
+    cm_entry_.resize(particles_.size() * sn);
+    cm_heavy_.resize(particles_.size());
+    cm_kind_.resize(particles_.size());
+    // Particle i's share of M a, given its gathered sum_j S_jp a_j, scattered through its list.
+    auto scatter_listed = [&](std::size_t i, const vector& ap) {
+        const std::uint32_t* list = &cm_entry_[i * sn];
+        const auto& st = stencils_[i];
+        const real heavy = cm_heavy_[i];
+        switch (cm_kind_[i]) {
+            case cm_all_heavy: {
+                // m_p a_p over its weight on the heavy nodes (renormalised; none where it
+                // reaches no such node)
+                const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+                st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
+                break;
+            }
+            case cm_some_light: {
+                const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+                st.for_each([&](std::size_t, real w, const vector&) {
+                    const std::size_t e = *list++;
+                    if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
+                });
+                break;
+            }
+            default:
+                // cm_held: a particle that reaches a shared node's entry takes part with its
+                // lumped mass (M's diagonal): no entry of its stencil is coupled to another
+                // through it. (No entry is shared in a single-field solver.)
+                st.for_each([&](std::size_t, real w, const vector&) {
+                    const std::size_t e = *list++;
+                    if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
+                });
+        }
+    };
     for (int it = 0; it < iterations; ++it) {
         // M a = sum_p S_ip m_p (sum_j S_jp a_j): each particle gathers from a^(j) and scatters
         // its share into the product in one pass, slab by slab (a fixed summation order whatever
@@ -87,77 +115,37 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         // sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps momentum where a
         // particle also reaches a light node.
         fill_entries(cm_product_, vector::Zero());
-        // Particle i's share of M a from its list (recorded in the first iteration), given its
-        // gathered sum_j S_jp a_j: the same operands in the same order as the chooser's path.
-        auto scatter_listed = [&](std::size_t i, const vector& ap) {
-            const std::uint32_t* list = &cm_entry_[i * sn];
-            const auto& st = stencils_[i];
-            const real heavy = cm_heavy_[i];
-            switch (cm_kind_[i]) {
-                case cm_all_heavy: {
-                    const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                    st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
-                    break;
-                }
-                case cm_some_light: {
-                    const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                    st.for_each([&](std::size_t, real w, const vector&) {
-                        const std::size_t e = *list++;
-                        if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
-                    });
-                    break;
-                }
-                default:  // cm_held
-                    st.for_each([&](std::size_t, real w, const vector&) {
-                        const std::size_t e = *list++;
-                        if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
-                    });
-            }
-        };
-        // The first iteration (every one where the lists are not kept) finds each particle's
-        // entries through the partition's chooser, and records them where `Record`.
-        auto first = [&]<bool Record>(std::size_t i) {
-            auto at = entries(i);
-            [[maybe_unused]] std::uint32_t* list = Record ? &cm_entry_[i * sn] : nullptr;
-            vector ap = vector::Zero();
-            real heavy = 0;     // the particle's weight on nodes above the mass cut-off
-            bool held = false;  // whether it reaches a shared node's entry
-            [[maybe_unused]] bool all_heavy = true;
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                const std::size_t e = at(node);
-                if constexpr (Record) *list++ = static_cast<std::uint32_t>(e);
-                ap += w * cm_accel_[e];
-                if (grid_.mass[e] > mass_cutoff_) heavy += w;
-                else all_heavy = false;
-                held = held || shared_entry(e);
-            });
-            if constexpr (Record) {
+        if (it == 0) {
+            // The first iteration finds each particle's entries through the partition's chooser
+            // and records them, with its weight on the heavy nodes and its kind.
+            for_each_particle_by_slab([&](std::size_t i) {
+                auto at = entries(i);
+                std::uint32_t* list = &cm_entry_[i * sn];
+                vector ap = vector::Zero();
+                real heavy = 0;     // the particle's weight on nodes above the mass cut-off
+                bool held = false;  // whether it reaches a shared node's entry
+                bool all_heavy = true;
+                stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                    const std::size_t e = at(node);
+                    *list++ = static_cast<std::uint32_t>(e);
+                    ap += w * cm_accel_[e];
+                    if (grid_.mass[e] > mass_cutoff_) heavy += w;
+                    else all_heavy = false;
+                    held = held || shared_entry(e);
+                });
                 cm_heavy_[i] = heavy;
                 cm_kind_[i] = held ? cm_held : all_heavy ? cm_all_heavy : cm_some_light;
                 scatter_listed(i, ap);
-                return;
-            }
-            // m_p a_p over that weight (none where the particle reaches no such node)
-            const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-            // A particle that reaches a shared node's entry takes part with its lumped mass
-            // (M's diagonal): no entry of its stencil is coupled to another through it. (No
-            // entry is shared in a single-field solver: `held` is false there.)
-            auto again = entries(i);  // a chooser walks the stencil once
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                const std::size_t e = again(node);
-                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += held ? vector(w * mass[i] * cm_accel_[e]) : vector(w * share);
             });
-        };
-        if (!listed) {
-            for_each_particle_by_slab([&](std::size_t i) { first.template operator()<false>(i); });
-        } else if (it == 0) {
-            for_each_particle_by_slab([&](std::size_t i) { first.template operator()<true>(i); });
         } else {
-            // The same sums from the lists, with the same operands in the same order.
+            // The same sums from the lists, with the same operands in the same order (a held
+            // particle scatters without its gathered sum).
             for_each_particle_by_slab([&](std::size_t i) {
-                const std::uint32_t* list = &cm_entry_[i * sn];
                 vector ap = vector::Zero();
-                stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * cm_accel_[*list++]; });
+                if (cm_kind_[i] != cm_held) {
+                    const std::uint32_t* list = &cm_entry_[i * sn];
+                    stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * cm_accel_[*list++]; });
+                }
                 scatter_listed(i, ap);
             });
         }

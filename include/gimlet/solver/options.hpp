@@ -59,7 +59,9 @@ struct solver_options {
     /// cfl sqrt(k + 1) must stay <= 1 (in lasting tension, noise grows the faster the closer it
     /// is to 1: docs/equations.md, "Known limitations"); MUSL and USF only (USL is refused).
     /// 0 = the lumped mass (the default: nothing runs). In [0, 8] (4 iterations converge on a
-    /// regular lattice).
+    /// regular lattice). It keeps each particle's node entries as 32-bit numbers (4 bytes per
+    /// stencil node: 36 in 2-D and 108 in 3-D with uGIMP), so the solver refuses it on a grid of
+    /// more than 2^32 - 1 entries (fields x nodes).
     int consistent_mass_iterations = 0;
     /// Replace each particle's J = det F, before every material update, by the L2 projection of
     /// the particles' J onto the grid's functions (consistent_mass_iterations iterations of the

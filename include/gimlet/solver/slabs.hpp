@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -97,6 +98,7 @@ public:
     /// particles are skipped. Every particle in a kept slab is visited, in for_each's order.
     template <class F>
     void for_each_reaching(const std::vector<std::uint8_t>& rows, bool parallel, int threads, F&& f) {
+        assert(rows.size() == std::size_t(rows_));
         keep_.assign(std::size_t(slabs_), 0);
         for (int s = 0; s < slabs_; ++s) {
             // A particle's stencil starts in one of its slab's rows and spans at most

@@ -126,6 +126,12 @@ public:
             grid_.set_field_count(materials_.size() * fields_per_body);
             exchange_.allocate(grid_.entries());
         }
+        // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp).
+        if (options_.consistent_mass_iterations > 0 && grid_.entries() > std::size_t(UINT32_MAX))
+            throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(grid_.entries()) +
+                                        " node entries, fields x nodes)",
+                                    std::to_string(options_.consistent_mass_iterations),
+                                    "0 on a grid of more than 4294967295 node entries");
         // Which components of a node's force the walls leave free (1) or take (0): the projection
         // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
         wall_free_.assign(grid_.entries(), vector::Ones());
@@ -676,8 +682,8 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_;
     std::vector<std::uint8_t> cm_lumped_;
-    // Per particle, found in the first iteration for the others: its entries in stencil order,
-    // its weight on the nodes above the cut-off, and how it scatters its share.
+    // Per particle, found in the first iteration and used by every one: its entries in stencil
+    // order, its weight on the nodes above the cut-off, and how it scatters its share.
     enum cm_scatter : std::uint8_t { cm_all_heavy, cm_some_light, cm_held };
     std::vector<std::uint32_t> cm_entry_;
     std::vector<real> cm_heavy_;
