@@ -72,6 +72,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // weight on the nodes above the cut-off, and how its share is scattered (cm_scatter). The
     // solver refuses the consistent mass on a grid whose entries do not fit 32 bits.
     constexpr std::size_t sn = stencil_type::nodes;
+    cm_listed_ = false;  // entries(i) chooses through the sides until the list is written
     cm_entry_.resize(particles_.size() * sn);
     cm_heavy_.resize(particles_.size());
     cm_kind_.resize(particles_.size());
@@ -137,6 +138,9 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
                 cm_kind_[i] = held ? cm_held : all_heavy ? cm_all_heavy : cm_some_light;
                 scatter_listed(i, ap);
             });
+            // The rest of the step's passes (the gather, MUSL's re-map, the velocity gradient)
+            // read their entries from the list too (entries).
+            cm_listed_ = true;
         } else {
             // The same sums from the lists, with the same operands in the same order (a held
             // particle scatters without its gathered sum).

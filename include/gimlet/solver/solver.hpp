@@ -267,15 +267,20 @@ private:
     // (stencil::for_each, for_each_offset: every node), that returns the index of the field entry. One field
     // per body: its body's block, whatever the node; one field in all: the only block (a
     // compile-time zero). With a partition: the side chosen at the start of the step
-    // (choose_fields), node by node.
+    // (choose_fields), node by node; once the consistent mass has listed the step's entries
+    // (cm_listed_), read from that list instead (the same entries, without the side's arithmetic).
     struct fixed_entry {
         std::size_t base;
         [[nodiscard]] std::size_t operator()(std::size_t node) const noexcept { return base + node; }
     };
     struct chosen_entry {
         std::size_t base, nodes;
-        const std::uint8_t* side;  // advanced node by node
-        [[nodiscard]] std::size_t operator()(std::size_t node) noexcept { return base + std::size_t(*side++) * nodes + node; }
+        const std::uint8_t* side;    // advanced node by node
+        const std::uint32_t* list;   // the step's listed entries, or null
+        [[nodiscard]] std::size_t operator()(std::size_t node) noexcept {
+            if (list) return *list++;
+            return base + std::size_t(*side++) * nodes + node;
+        }
     };
     [[nodiscard]] auto entries(std::size_t i) const noexcept {
         if constexpr (!multi_field) {
@@ -283,7 +288,9 @@ private:
         } else {
             const std::size_t body = particles_.template column<fields::body>()[i];
             if constexpr (fields_per_body == 1) return fixed_entry{body * grid_.size()};
-            else return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), sides_[i].data()};
+            else
+                return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), sides_[i].data(),
+                                    cm_listed_ ? &cm_entry_[i * stencil_type::nodes] : nullptr};
         }
     }
 
@@ -315,6 +322,11 @@ private:
 
     void advance(real dt) {
         phase_clock lap;
+        // The consistent mass's entry list serves this step only, however it ends.
+        struct unlist {
+            bool& listed;
+            ~unlist() { listed = false; }
+        } const step_lists{cm_listed_};
         begin_step(dt, lap);
         switch (options_.scheme) {
             case update_scheme::musl: musl_step(dt, lap); break;
@@ -688,6 +700,7 @@ private:
     std::vector<std::uint32_t> cm_entry_;
     std::vector<real> cm_heavy_;
     std::vector<std::uint8_t> cm_kind_;
+    bool cm_listed_ = false;  // cm_entry_ holds this step's entries (set after the first iteration)
     // The volume filter (volume_filter.hpp): per body and node entry the lumped projection of J,
     // the iterate, M times it (and the releases), the masses as the renormalised weights see
     // them; per particle the gathered values, the weight on the nodes above the cut-off and the
