@@ -72,7 +72,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // weight on the nodes above the cut-off, and how its share is scattered (cm_scatter). The
     // solver refuses the consistent mass on a grid whose entries do not fit 32 bits.
     constexpr std::size_t sn = stencil_type::nodes;
-    cm_listed_ = false;  // entries(i) chooses through the sides until the list is written
+    cm_listed_ = false;  // entries(i) chooses through the sides until the list is written (advance() resets it too)
     cm_entry_.resize(particles_.size() * sn);
     cm_heavy_.resize(particles_.size());
     cm_kind_.resize(particles_.size());
@@ -81,30 +81,26 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         const std::uint32_t* list = &cm_entry_[i * sn];
         const auto& st = stencils_[i];
         const real heavy = cm_heavy_[i];
-        switch (cm_kind_[i]) {
-            case cm_all_heavy: {
-                // m_p a_p over its weight on the heavy nodes (renormalised; none where it
-                // reaches no such node)
-                const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
-                break;
-            }
-            case cm_some_light: {
-                const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
-                st.for_each([&](std::size_t, real w, const vector&) {
-                    const std::size_t e = *list++;
-                    if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
-                });
-                break;
-            }
-            default:
-                // cm_held: a particle that reaches a shared node's entry takes part with its
-                // lumped mass (M's diagonal): no entry of its stencil is coupled to another
-                // through it. (No entry is shared in a single-field solver.)
-                st.for_each([&](std::size_t, real w, const vector&) {
-                    const std::size_t e = *list++;
-                    if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
-                });
+        if (cm_kind_[i] == cm_held) {
+            // A particle that reaches a shared node's entry takes part with its lumped mass
+            // (M's diagonal): no entry of its stencil is coupled to another through it. (No
+            // entry is shared in a single-field solver.)
+            st.for_each([&](std::size_t, real w, const vector&) {
+                const std::size_t e = *list++;
+                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * mass[i] * cm_accel_[e]);
+            });
+            return;
+        }
+        // m_p a_p over its weight on the heavy nodes (renormalised; none where it reaches no
+        // such node); only a particle that reaches a light node tests the nodes' masses.
+        const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
+        if (cm_kind_[i] == cm_all_heavy) {
+            st.for_each([&](std::size_t, real w, const vector&) { cm_product_[*list++] += vector(w * share); });
+        } else {
+            st.for_each([&](std::size_t, real w, const vector&) {
+                const std::size_t e = *list++;
+                if (grid_.mass[e] > mass_cutoff_) cm_product_[e] += vector(w * share);
+            });
         }
     };
     for (int it = 0; it < iterations; ++it) {

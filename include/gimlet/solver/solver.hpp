@@ -120,18 +120,20 @@ public:
                                     "isentrope, which its thermal policy does not provide (reference_energy(J); "
                                     "thermal::isentrope_temperature does)");
         check_light_possible();
+        // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp):
+        // refused, before the nodal arrays are allocated, on a grid with more entries.
+        const std::size_t entries_wanted = grid_.size() * (multi_field ? materials_.size() * fields_per_body : 1);
+        if (options_.consistent_mass_iterations > 0 && entries_wanted > std::size_t(UINT32_MAX))
+            throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(entries_wanted) +
+                                        " node entries, fields x nodes)",
+                                    std::to_string(options_.consistent_mass_iterations),
+                                    "0 on a grid of more than 4294967295 node entries");
         if constexpr (multi_field) {
             // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
             // them; a single-field policy keeps one.
             grid_.set_field_count(materials_.size() * fields_per_body);
             exchange_.allocate(grid_.entries());
         }
-        // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp).
-        if (options_.consistent_mass_iterations > 0 && grid_.entries() > std::size_t(UINT32_MAX))
-            throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(grid_.entries()) +
-                                        " node entries, fields x nodes)",
-                                    std::to_string(options_.consistent_mass_iterations),
-                                    "0 on a grid of more than 4294967295 node entries");
         // Which components of a node's force the walls leave free (1) or take (0): the projection
         // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
         wall_free_.assign(grid_.entries(), vector::Ones());
@@ -475,6 +477,12 @@ private:
     void for_each_particle_by_slab(F&& f) {
         slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
     }
+    // The same, for the particles of the slabs whose stencils can reach a node row flagged in
+    // `rows` (slab_schedule::for_each_reaching).
+    template <class F>
+    void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f) {
+        slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+    }
 
     // ---- transfers (solver/transfers.hpp): P2G, the grid update, G2P with the light nodes
     // and the damping transfer
@@ -526,8 +534,7 @@ private:
         exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
                                     [&](std::size_t i) { return entries(i); },
                                     [&](const std::vector<std::uint8_t>& rows, auto&& f) {
-                                        slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold,
-                                                                 threads(), f);
+                                        for_each_particle_by_slab_reaching(rows, f);
                                     },
                                     threads(),
                                     std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
