@@ -32,6 +32,7 @@
 
 #include "gimlet/solver/solver.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -43,12 +44,11 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const int iterations = options_.consistent_mass_iterations;
     if (iterations <= 0) return;
     const std::size_t ne = grid_.entries();
-    const auto nodes = static_cast<std::ptrdiff_t>(ne);
-    [[maybe_unused]] const bool parallel_nodes = nodes >= node_parallel_threshold;  // read by the OpenMP pragmas only
+    [[maybe_unused]] const bool parallel_nodes = static_cast<std::ptrdiff_t>(ne) >= node_parallel_threshold;  // read by the OpenMP pragmas only
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
-    if constexpr (multi_field) cm_lumped_.assign(ne, 0);  // a single-field solver has no shared node, and pays nothing for them
+    if constexpr (multi_field) cm_lumped_.resize(ne);  // written below; a single-field solver has no shared node, and pays nothing for them
     auto shared_entry = [&](std::size_t e) {
         if constexpr (multi_field) return cm_lumped_[e] != 0;
         else return (static_cast<void>(e), false);
@@ -57,15 +57,40 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // part; a component a fixed or slip wall holds has none (wall_free_). An entry at a node
     // where two or more fields are above the cut-off (the shared nodes of multi-field contact,
     // which the step's find_shared_nodes has found) keeps a^(0) through the iteration.
+    // The pass runs in blocks of cm_block entries and notes the blocks that hold an entry above
+    // the cut-off: the iterations' node passes visit those blocks only. Everywhere else the
+    // passes do nothing (no mass, so no update and no force), and M a is neither written nor
+    // read there: the empty room of the grid and the fields no particle uses (self-contact's
+    // second fields where nothing splits) cost one pass a step, not 2k + 2.
     [[maybe_unused]] const std::size_t grid_nodes = grid_.size();  // read in multi-field solvers only
+    const std::size_t blocks = (ne + cm_block - 1) / cm_block;
+    cm_block_heavy_.resize(blocks);
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-    for (std::ptrdiff_t k = 0; k < nodes; ++k) {
-        const auto e = static_cast<std::size_t>(k);
-        const real m = grid_.mass[e];
-        cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
-        cm_accel_[e] = cm_first_[e];
-        if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
+    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+        bool heavy = false;
+        for (std::size_t e = std::size_t(b) * cm_block, last = std::min(ne, e + cm_block); e < last; ++e) {
+            const real m = grid_.mass[e];
+            heavy = heavy || m > mass_cutoff_;
+            cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
+            cm_accel_[e] = cm_first_[e];
+            if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
+        }
+        cm_block_heavy_[std::size_t(b)] = heavy;
     }
+    cm_blocks_.clear();
+    for (std::size_t b = 0; b < blocks; ++b)
+        if (cm_block_heavy_[b]) cm_blocks_.push_back(static_cast<std::uint32_t>(b));
+    // f(e) for every entry of the blocks above, split between the threads (each entry's work is
+    // its own, so the results do not depend on how).
+    const auto heavy_blocks = static_cast<std::ptrdiff_t>(cm_blocks_.size());
+    [[maybe_unused]] const bool parallel_heavy = heavy_blocks * std::ptrdiff_t(cm_block) >= node_parallel_threshold;
+    auto for_each_heavy_block_entry = [&](auto&& f) {
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_heavy))
+        for (std::ptrdiff_t k = 0; k < heavy_blocks; ++k) {
+            const std::size_t first = std::size_t(cm_blocks_[std::size_t(k)]) * cm_block;
+            for (std::size_t e = first, last = std::min(ne, first + cm_block); e < last; ++e) f(e);
+        }
+    };
     const auto& mass = particles_.template column<fields::mass>();
     // What the iterations share, found in the first: each particle's node entries in its
     // stencil's order (the partition's choice of field made once, not once per iteration), its
@@ -111,7 +136,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         // only, its weights there renormalised to one: sum_i (M a)_i is then
         // sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps momentum where a
         // particle also reaches a light node.
-        fill_entries(cm_product_, vector::Zero());
+        for_each_heavy_block_entry([&](std::size_t e) { cm_product_[e] = vector::Zero(); });
         if (it == 0) {
             // The first iteration finds each particle's entries through the partition's chooser
             // and records them, with its weight on the heavy nodes and its kind.
@@ -149,23 +174,19 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
                 scatter_listed(i, ap);
             });
         }
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-        for (std::ptrdiff_t k = 0; k < nodes; ++k) {
-            const auto e = static_cast<std::size_t>(k);
+        for_each_heavy_block_entry([&](std::size_t e) {
             const real m = grid_.mass[e];
             if (m > mass_cutoff_ && !shared_entry(e))
                 cm_accel_[e] = cm_first_[e] + wall_free_[e].cwiseProduct(cm_accel_[e] - cm_product_[e] / m);
-        }
+        });
     }
     // f <- f + m (a^(k) - a^(0)): m a^(k) where a component is free, the force as it was where
     // a wall holds it (the wall then sets that velocity component) and at a shared node's entry
     // (where a^(k) = a^(0)).
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-    for (std::ptrdiff_t k = 0; k < nodes; ++k) {
-        const auto e = static_cast<std::size_t>(k);
+    for_each_heavy_block_entry([&](std::size_t e) {
         const real m = grid_.mass[e];
         if (m > mass_cutoff_) grid_.force[e] += m * (cm_accel_[e] - cm_first_[e]);
-    }
+    });
 }
 
 }  // namespace gimlet

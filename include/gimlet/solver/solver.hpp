@@ -701,6 +701,11 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_;
     std::vector<std::uint8_t> cm_lumped_;
+    // The blocks of cm_block entries that hold an entry above the cut-off (found in the first
+    // node pass; the iterations' node passes visit only those).
+    static constexpr std::size_t cm_block = 64;
+    std::vector<std::uint8_t> cm_block_heavy_;
+    std::vector<std::uint32_t> cm_blocks_;
     // Per particle, found in the first iteration and used by every one: its entries in stencil
     // order, its weight on the nodes above the cut-off, and how it scatters its share.
     enum cm_scatter : std::uint8_t { cm_all_heavy, cm_some_light, cm_held };
