@@ -62,13 +62,17 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // passes do nothing (no mass, so no update and no force), and M a is neither written nor
     // read there: the empty room of the grid and the fields no particle uses (self-contact's
     // second fields where nothing splits) cost one pass a step, not 2k + 2.
-    [[maybe_unused]] const std::size_t grid_nodes = grid_.size();  // read in multi-field solvers only
+    const std::size_t grid_nodes = grid_.size();
     const std::size_t blocks = (ne + cm_block - 1) / cm_block;
     cm_block_heavy_.resize(blocks);
     GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
     for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
         bool heavy = false;
-        for (std::size_t e = std::size_t(b) * cm_block, last = std::min(ne, e + cm_block); e < last; ++e) {
+        const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
+        // A block within a field slot the step does not sweep (choose_swept_fields) has no mass.
+        const std::size_t field = first / grid_nodes;
+        const bool unswept = field == (last - 1) / grid_nodes && field % fields_per_body >= swept_fields_;
+        for (std::size_t e = first; e < last && !unswept; ++e) {
             const real m = grid_.mass[e];
             heavy = heavy || m > mass_cutoff_;
             cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();

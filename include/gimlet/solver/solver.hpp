@@ -359,6 +359,7 @@ private:
         }
         if constexpr (fields_per_body > 1) {
             choose_fields();
+            choose_swept_fields();
             lap(timings_.particle_to_grid);
         }
         dt_ = dt;
@@ -492,6 +493,10 @@ private:
     void nodal_velocity(std::vector<vector>& out);
     void clear_grid();
     void fill_entries(std::vector<vector>& out, const vector& value);
+    // f(e) for every grid entry of the field slots swept this step (choose_swept_fields), split
+    // between the threads on a large grid; f(e) writes entry e only.
+    template <class F>
+    void for_each_swept_entry(F&& f);
     void update_grid_momentum(real dt, bool with_old_velocity);
     void consistent_mass_forces();  // solver/consistent_mass.hpp
     void filter_volumes();          // solver/volume_filter.hpp (solver_options::volume_filter)
@@ -603,6 +608,21 @@ private:
                      std::to_string(fields_per_body) + ") at a node of its stencil");
     }
 
+    // The field slots the grid's node passes visit this step (for_each_swept_entry): every
+    // slot, unless the partition says it splits nothing (its optional splits()) in this step and
+    // did not in the previous one. Every particle is then in its body's first field, and the
+    // other slots' entries hold what a pass over them would leave: nothing reached them in this
+    // step or the last, and the passes of the last step that reached them left them empty (no
+    // mass, momentum, force or velocity). Self-contact's second fields, where nothing splits,
+    // then cost no pass over the grid.
+    template <int = 0>
+    void choose_swept_fields() {
+        bool splits = true;
+        if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) splits = partition_.splits();
+        swept_fields_ = splits || split_before_ ? fields_per_body : 1;
+        split_before_ = splits;
+    }
+
     template <int = 0>
     void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
 
@@ -701,6 +721,10 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_;
     std::vector<std::uint8_t> cm_lumped_;
+    // The field slots of each body the grid's node passes visit this step, and whether the
+    // partition split a node in the previous step (true before the first: it sweeps them all).
+    std::size_t swept_fields_ = fields_per_body;
+    bool split_before_ = true;
     // The blocks of cm_block entries that hold an entry above the cut-off (found in the first
     // node pass; the iterations' node passes visit only those).
     static constexpr std::size_t cm_block = 64;

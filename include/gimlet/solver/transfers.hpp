@@ -80,28 +80,47 @@ void solver<S, Sh, M, C, ExtraFields, Part>::map_forces() {
 // (docs/physics.md section 1, step 2).
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>& out) {
-    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-        const auto i = static_cast<std::size_t>(k);
+    for_each_swept_entry([&](std::size_t i) {
         out[i] = grid_.mass[i] > 0 ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
-    }
+    });
 }
 
 // The nodal arrays are cleared every step; on a large grid that is memory-bound work a single
 // thread would do while the others wait, so it is split between the threads.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::clear_grid() {
-    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) grid_.clear_entry(static_cast<std::size_t>(k));
+    for_each_swept_entry([&](std::size_t e) { grid_.clear_entry(e); });
 }
 
+// `out` holds one value per grid entry.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
-    const auto n = static_cast<std::ptrdiff_t>(out.size());
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = value;
+    for_each_swept_entry([&](std::size_t e) { out[e] = value; });
+}
+
+// All the entries, or where a body's later field slots are not swept (choose_swept_fields),
+// its first slot's: runs of up to `run` entries, handed to the threads in a fixed split.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <class F>
+void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
+    const std::size_t nodes = grid_.size(), swept = swept_fields_;
+    if (swept == fields_per_body) {
+        const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
+        for (std::ptrdiff_t k = 0; k < n; ++k) f(static_cast<std::size_t>(k));
+        return;
+    }
+    constexpr std::size_t run = 1024;
+    const std::size_t runs_per_slot = (nodes + run - 1) / run, slots = materials_.size() * swept;
+    const auto runs = static_cast<std::ptrdiff_t>(slots * runs_per_slot);
+    [[maybe_unused]] const bool parallel = static_cast<std::ptrdiff_t>(slots * nodes) >= node_parallel_threshold;
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel))
+    for (std::ptrdiff_t k = 0; k < runs; ++k) {
+        const std::size_t slot = std::size_t(k) / runs_per_slot, r = std::size_t(k) % runs_per_slot;
+        const std::size_t block = (slot / swept) * fields_per_body + slot % swept;  // body * fields_per_body + field
+        const std::size_t first = block * nodes + r * run, last = block * nodes + std::min(nodes, (r + 1) * run);
+        for (std::size_t e = first; e < last; ++e) f(e);
+    }
 }
 
 // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), the forces of the consistent
@@ -112,10 +131,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& o
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
     consistent_mass_forces();  // solver_options::consistent_mass_iterations; nothing at 0
-    const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-        const auto i = static_cast<std::size_t>(k);
+    for_each_swept_entry([&](std::size_t i) {
         const real mi = grid_.mass[i];
         if (with_old_velocity) grid_.velocity_old[i] = mi > 0 ? vector(grid_.momentum[i] / mi) : vector::Zero();
         if (mi > mass_cutoff_) {
@@ -124,7 +140,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool 
         } else {
             grid_.velocity[i] = grid_.velocity_old[i];
         }
-    }
+    });
     grid_.apply_walls(grid_.velocity);
 }
 
