@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, throughput (the reference scene and
+# Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, the material update with two particles per vector, throughput (the reference scene and
 # the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect,
 # accuracy against time, and the flagship's outputs against outputs off. CSVs and Markdown tables go to results/bench/, plots to
 # docs/perf_*.png (drawn with Debian's /usr/bin/python3, which has matplotlib).
@@ -46,19 +46,25 @@ if [ "$quick" = 1 ]; then
     eff_args=(--cell 4 --steps 5 --repeats 1)
     acc_args=(--quick 1)
     ceil_args=(--quick 1)
+    lanes_args=(--repeats 1 --cell 2)
 else
     ref_args=(--cell 0.5 --steps 1000 --repeats 3)
     sizes=(2 1 0.5 0.25 0.125)
     eff_args=(--cell 1 --steps 300 --repeats 5)
     acc_args=()
     ceil_args=()
+    lanes_args=()
 fi
 
 # The machine's ceilings (floating-point throughput and bandwidth) that docs/performance.md's
 # per-phase table compares the step with.
 load "ceilings start"
 "$bin/ceilings/bench_ceilings" "${ceil_args[@]}" | tee "$out/ceilings.md"
-load "ceilings end / throughput start"
+load "ceilings end / lanes start"
+# The elastic material update with two particles per vector, against the library's (a lever's
+# measure: docs/performance.md, "Two particles per vector").
+"$bin/lanes/bench_lanes" "${lanes_args[@]}" | tee "$out/lanes.md"
+load "lanes end / throughput start"
 {
     "$bin/throughput/bench_throughput" --header 1 --scene reference --threads 1 "${ref_args[@]}"
     for scene in reference hmx; do
