@@ -48,7 +48,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
-    if constexpr (multi_field) cm_lumped_.resize(ne);  // written below; a single-field solver has no shared node, and pays nothing for them
+    if constexpr (multi_field) cm_lumped_.resize(ne);  // written below where read; a single-field solver has no shared node, and pays nothing for them
     auto shared_entry = [&](std::size_t e) {
         if constexpr (multi_field) return cm_lumped_[e] != 0;
         else return (static_cast<void>(e), false);
@@ -60,8 +60,11 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // The pass runs in blocks of cm_block entries and notes the blocks that hold an entry above
     // the cut-off: the iterations' node passes visit those blocks only. Everywhere else the
     // passes do nothing (no mass, so no update and no force), and M a is neither written nor
-    // read there: the empty room of the grid and the fields no particle uses (self-contact's
-    // second fields where nothing splits) cost one pass a step, not 2k + 2.
+    // read there: the grid's empty room costs this one pass a step, not 2k + 2. This pass still
+    // writes a^(0) in every block of the swept field slots, light entries included: the
+    // particles' gathers read a at every node of their stencils. The slots the step does not
+    // sweep (swept_fields_: self-contact's second fields where nothing splits) hold no
+    // particle's node, so it skips them too.
     const std::size_t grid_nodes = grid_.size();
     const std::size_t blocks = (ne + cm_block - 1) / cm_block;
     cm_block_heavy_.resize(blocks);
@@ -69,7 +72,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
         bool heavy = false;
         const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
-        // A block within a field slot the step does not sweep (choose_swept_fields) has no mass.
+        // A block within a field slot the step does not sweep (swept_fields_) has no mass.
         const std::size_t field = first / grid_nodes;
         const bool unswept = field == (last - 1) / grid_nodes && field % fields_per_body >= swept_fields_;
         for (std::size_t e = first; e < last && !unswept; ++e) {

@@ -335,6 +335,9 @@ private:
             case update_scheme::usl: usl_step(dt, lap); break;
             case update_scheme::usf: usf_step(dt, lap); break;
         }
+        // Reached only when the step completes: a step that stopped part-way may have left
+        // values in the later field slots, which the next step then sweeps.
+        later_fields_empty_ = !split_now_;
     }
 
     // What every scheme does first: the checks of what changed between steps, the weights at
@@ -358,8 +361,10 @@ private:
             partition_.prepare(view);
         }
         if constexpr (fields_per_body > 1) {
+            split_now_ = true;
+            if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) split_now_ = partition_.splits();
             choose_fields();
-            choose_swept_fields();
+            swept_fields_ = split_now_ || !later_fields_empty_ ? fields_per_body : 1;
             lap(timings_.particle_to_grid);
         }
         dt_ = dt;
@@ -493,7 +498,7 @@ private:
     void nodal_velocity(std::vector<vector>& out);
     void clear_grid();
     void fill_entries(std::vector<vector>& out, const vector& value);
-    // f(e) for every grid entry of the field slots swept this step (choose_swept_fields), split
+    // f(e) for every grid entry of the field slots swept this step (swept_fields_), split
     // between the threads on a large grid; f(e) writes entry e only.
     template <class F>
     void for_each_swept_entry(F&& f);
@@ -580,13 +585,12 @@ private:
     void choose_fields() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         sides_.resize(particles_.size());
-        // A partition that can say it splits nothing this step (multi_field::Partition's
-        // optional splits()) puts every particle in its body's first field at once.
-        if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) {
-            if (!partition_.splits()) {
-                std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
-                return;
-            }
+        // A partition that says it splits nothing this step (multi_field::Partition's optional
+        // splits(), asked once a step: split_now_) puts every particle in its body's first field
+        // at once.
+        if (!split_now_) {
+            std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
+            return;
         }
         std::ptrdiff_t first_bad = n;
         GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
@@ -606,21 +610,6 @@ private:
             fail(static_cast<std::size_t>(first_bad),
                  "the partition (multi_field::Partition::side) chose a field outside [0, " +
                      std::to_string(fields_per_body) + ") at a node of its stencil");
-    }
-
-    // The field slots the grid's node passes visit this step (for_each_swept_entry): every
-    // slot, unless the partition says it splits nothing (its optional splits()) in this step and
-    // did not in the previous one. Every particle is then in its body's first field, and the
-    // other slots' entries hold what a pass over them would leave: nothing reached them in this
-    // step or the last, and the passes of the last step that reached them left them empty (no
-    // mass, momentum, force or velocity). Self-contact's second fields, where nothing splits,
-    // then cost no pass over the grid.
-    template <int = 0>
-    void choose_swept_fields() {
-        bool splits = true;
-        if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) splits = partition_.splits();
-        swept_fields_ = splits || split_before_ ? fields_per_body : 1;
-        split_before_ = splits;
     }
 
     template <int = 0>
@@ -721,10 +710,17 @@ private:
     // lumped acceleration (an entry at a node two or more fields share).
     std::vector<vector> cm_first_, cm_accel_, cm_product_;
     std::vector<std::uint8_t> cm_lumped_;
-    // The field slots of each body the grid's node passes visit this step, and whether the
-    // partition split a node in the previous step (true before the first: it sweeps them all).
+    // The field slots of each body that the grid's node passes visit this step
+    // (for_each_swept_entry). A body's later slots are skipped where the partition says it
+    // splits nothing this step (its optional splits(): split_now_; a partition without it always
+    // splits) and the later slots are empty: no mass, momentum, force, velocity or wall flag in
+    // any of their entries, which is what a pass over them would leave. The first step to
+    // complete without a split swept every slot, left them empty and sets later_fields_empty_;
+    // nothing writes there until a step splits again. Self-contact's second fields, where
+    // nothing splits, then cost no pass over the grid.
     std::size_t swept_fields_ = fields_per_body;
-    bool split_before_ = true;
+    bool split_now_ = true;
+    bool later_fields_empty_ = false;
     // The blocks of cm_block entries that hold an entry above the cut-off (found in the first
     // node pass; the iterations' node passes visit only those).
     static constexpr std::size_t cm_block = 64;

@@ -8,6 +8,7 @@
 #include "gimlet/solver/solver.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <vector>
 
@@ -85,20 +86,23 @@ void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>&
     });
 }
 
-// The nodal arrays are cleared every step; on a large grid that is memory-bound work a single
-// thread would do while the others wait, so it is split between the threads.
+// The nodal arrays of the swept field slots are cleared every step (the others are empty
+// already: swept_fields_); on a large grid that is memory-bound work a single thread would do
+// while the others wait, so it is split between the threads.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::clear_grid() {
     for_each_swept_entry([&](std::size_t e) { grid_.clear_entry(e); });
 }
 
-// `out` holds one value per grid entry.
+// `out` holds one value per grid entry; the slots not swept this step hold `value` already
+// (the callers fill with zero, and nothing writes there while a slot is not swept).
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
+    assert(out.size() == grid_.entries());
     for_each_swept_entry([&](std::size_t e) { out[e] = value; });
 }
 
-// All the entries, or where a body's later field slots are not swept (choose_swept_fields),
+// All the entries, or where a body's later field slots are not swept (swept_fields_),
 // its first slot's: runs of up to `run` entries, handed to the threads in a fixed split.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 template <class F>
