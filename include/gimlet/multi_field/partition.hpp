@@ -36,9 +36,9 @@ namespace gimlet::multi_field {
 /// void prepare(const View& view)`. The solver calls a hook only if the partition has it, so a
 /// hook with another name or a signature the solver cannot call is not an error: it is never
 /// called. A third, `bool splits() const`, asked after `prepare`, may return false to say that
-/// every side is 0 this step, so the solver need not ask `side` particle by particle; where it
-/// said so in the previous step too, the grid's node passes skip every body's fields past the
-/// first (multi_field::check refuses a non-const one).
+/// every side is 0 this step, so the solver need not ask `side` particle by particle; once a
+/// step has completed with it false, the grid's node passes skip every body's fields past the
+/// first while it stays false. Asked once a step (multi_field::check refuses a non-const one).
 /// Particle indices are those of the store at the time of the call: the solver renumbers the
 /// particles when it sorts them (solver_options::sort_interval), so per-particle state belongs
 /// in `required_fields`, not in members indexed by particle.
