@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -216,6 +217,7 @@ public:
     /// The storage index along the last axis of the node stored at `index` (the solver's
     /// scatter cuts the grid into slabs of such layers): unflatten(index)[dim - 1].
     [[nodiscard]] int layer(std::size_t index) const noexcept {
+        assert(index < size_);  // a node index, not a field entry (those of field f start at f * size())
         return static_cast<int>(index / static_cast<std::size_t>(stride_[dim - 1]));
     }
 

@@ -27,6 +27,7 @@
 #include "gimlet/solver/slabs.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -280,7 +281,15 @@ private:
         const std::uint8_t* side;    // advanced node by node
         const std::uint32_t* list;   // the step's listed entries, or null
         [[nodiscard]] std::size_t operator()(std::size_t node) noexcept {
-            if (list) return *list++;
+            if (list) {
+#ifndef NDEBUG
+                // The list holds what the sides give, node by node, only if every pass walks a
+                // whole stencil in order (a pass that stopped part-way would shift the next one).
+                assert(*list == base + std::size_t(*side) * nodes + node);
+                ++side;
+#endif
+                return *list++;
+            }
             return base + std::size_t(*side++) * nodes + node;
         }
     };
