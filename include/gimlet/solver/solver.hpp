@@ -372,8 +372,9 @@ private:
         if constexpr (fields_per_body > 1) {
             split_now_ = true;
             if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) split_now_ = partition_.splits();
-            choose_fields();
             swept_fields_ = split_now_ || !later_fields_empty_ ? fields_per_body : 1;
+            if (split_now_) later_fields_empty_ = false;  // this step writes there, even if it stops part-way
+            choose_fields();
             lap(timings_.particle_to_grid);
         }
         dt_ = dt;
