@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // What two particles in the lanes of one vector would give the material update of the reference
 // scene (linear elastic strength, linear EOS, no heat, no viscosity; plane strain), timed three
-// ways over the scene's particles after 50 steps, each from the same state and velocity
-// gradients:
+// ways over the scene's particles (after 50 steps and five library updates with random velocity
+// gradients, so that every particle is stressed and rotated), each from the same state and
+// velocity gradients:
 //   library     gimlet::update_material_point, one particle at a time (what the solver runs);
 //   one lane    the same arithmetic written out for plane strain, one particle at a time (no
 //               3 x 3 tensors: what a plane-strain path of the policies would do);

@@ -121,18 +121,19 @@ public:
                                     "isentrope, which its thermal policy does not provide (reference_energy(J); "
                                     "thermal::isentrope_temperature does)");
         check_light_possible();
+        // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
+        // them; a single-field policy keeps one.
+        const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
         // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp):
         // refused, before the nodal arrays are allocated, on a grid with more entries.
-        const std::size_t entries_wanted = grid_.size() * (multi_field ? materials_.size() * fields_per_body : 1);
+        const std::size_t entries_wanted = grid_.size() * fields;
         if (options_.consistent_mass_iterations > 0 && entries_wanted > std::size_t(UINT32_MAX))
             throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(entries_wanted) +
                                         " node entries, fields x nodes)",
                                     std::to_string(options_.consistent_mass_iterations),
                                     "0 on a grid of more than 4294967295 node entries");
         if constexpr (multi_field) {
-            // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
-            // them; a single-field policy keeps one.
-            grid_.set_field_count(materials_.size() * fields_per_body);
+            grid_.set_field_count(fields);
             exchange_.allocate(grid_.entries());
         }
         // Which components of a node's force the walls leave free (1) or take (0): the projection
