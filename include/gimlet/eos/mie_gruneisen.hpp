@@ -4,6 +4,7 @@
 /// Mie-Grueneisen equation of state with the linear U_s-U_p Hugoniot as reference.
 
 #include "gimlet/core/describe.hpp"
+#include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/eos/concepts.hpp"
 
@@ -83,7 +84,7 @@ public:
     /// elastic shear energy, point_step::shear_energy, which is not heat: the Grueneisen term is
     /// the thermal pressure): P = [P_H + Gamma rho (e_b - w_s - e_H)] / (1 + Gamma rho f).
     template <class Real, class P>
-    [[nodiscard]] Real pressure(const point_step<Real>& st, const P& p) const {
+    [[nodiscard]] GIMLET_INLINE Real pressure(const point_step<Real>& st, const P& p) const {
         check_singularity(double(st.J), p, st.step, st.time);
         const double j = double(st.J);
         const double grho = gamma_ * double(st.density);
@@ -136,14 +137,16 @@ private:
     }
 
     template <class P>
-    void check_singularity(double j, const P& p, std::size_t step, double time) const {
+    GIMLET_INLINE void check_singularity(double j, const P& p, std::size_t step, double time) const {
         const double eta = 1.0 - j;
-        if (eta > 0.0 && 1.0 - s_ * eta <= margin_)
-            throw numerical_error(describe_particle(p, step, time) + ": compression eta = 1 - V/V0 = " +
-                                  detail::to_text(eta) + " reached the Mie-Grueneisen limit (1 - s eta = " +
-                                  detail::to_text(1.0 - s_ * eta) + " <= singularity_margin " +
-                                  detail::to_text(margin_) + "; P_H is singular at eta = 1/s = " +
-                                  detail::to_text(1.0 / s_) + ")");
+        if (eta > 0.0 && 1.0 - s_ * eta <= margin_) singularity_reached(eta, p, step, time);
+    }
+    template <class P>
+    [[noreturn]] GIMLET_COLD void singularity_reached(double eta, const P& p, std::size_t step, double time) const {
+        throw numerical_error(describe_particle(p, step, time) + ": compression eta = 1 - V/V0 = " +
+                              detail::to_text(eta) + " reached the Mie-Grueneisen limit (1 - s eta = " +
+                              detail::to_text(1.0 - s_ * eta) + " <= singularity_margin " + detail::to_text(margin_) +
+                              "; P_H is singular at eta = 1/s = " + detail::to_text(1.0 / s_) + ")");
     }
 
     double rho0_, c0_, s_, gamma_, margin_;

@@ -3,6 +3,7 @@
 /// \file
 /// Hypoelastic isotropic linear elasticity for the deviatoric stress, Jaumann rate.
 
+#include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/strength/concepts.hpp"
 #include "gimlet/strength/jaumann.hpp"
@@ -25,7 +26,7 @@ public:
     }
 
     template <class Real, class P>
-    Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& /*p*/) const {
+    GIMLET_INLINE Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& /*p*/) const {
         s = jaumann_rotate(st, s);
         s += st.dt * Real(2 * g_) * deviator(st.D);
         return Real(0);

@@ -4,6 +4,7 @@
 /// von Mises plasticity with linear isotropic hardening, hypoelastic predictor (Jaumann rate),
 /// radial return.
 
+#include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/strength/concepts.hpp"
 #include "gimlet/strength/jaumann.hpp"
@@ -36,7 +37,7 @@ public:
     }
 
     template <class Real, class P>
-    Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& p) const {
+    GIMLET_INLINE Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& p) const {
         s = jaumann_rotate(st, s);
         s += st.dt * Real(2 * g_) * deviator(st.D);
         Real& eps_p = p.template get<fields::plastic_strain>();

@@ -5,6 +5,7 @@
 /// its reference isentrope: the temperature consistent with the EOS's own energy.
 
 #include "gimlet/core/describe.hpp"
+#include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/thermal/concepts.hpp"
@@ -76,16 +77,11 @@ public:
 
     /// T from the end-of-step state. `dissipated` (plastic work) is already in e: not added again.
     template <class Real, class P>
-    void update(const point_step<Real>& st, Real /*dissipated*/, const P& p) const {
+    GIMLET_INLINE void update(const point_step<Real>& st, Real /*dissipated*/, const P& p) const {
         const double j = double(st.J);
         const double e_th = double(p.template get<fields::specific_internal_energy>()) - double(st.shear_energy);
         const double below = reference_energy(j, p, st.step, st.time) - e_th;
-        if (below > cv_ * cold_)
-            throw numerical_error(describe_particle(p, st.step, st.time) + ": thermal energy e_th = " +
-                                  gimlet::detail::to_text(e_th) + " J/kg is below the reference isentrope e_s(V) by " +
-                                  gimlet::detail::to_text(below) + " J/kg (" + gimlet::detail::to_text(below / cv_) +
-                                  " K, more than cold_tolerance " + gimlet::detail::to_text(cold_) +
-                                  " K) at J = " + gimlet::detail::to_text(j) + ": the numerics lost energy");
+        if (below > cv_ * cold_) too_cold(j, e_th, below, p, st.step, st.time);
         p.template get<fields::temperature>() = Real(isentrope(j) - below / cv_);
     }
 
@@ -126,7 +122,7 @@ private:
         double x0 = 0, dx = 0;
         std::vector<double> e, de_dx;  ///< e_s and de_s/dx at the nodes
 
-        double at(const isentrope_temperature& th, double j) const {
+        GIMLET_INLINE double at(const isentrope_temperature& th, double j) const {
             const double x = std::log(j - th.j_sing());
             const double u = (x - x0) / dx;
             if (!(u >= 0.0)) return th.direct(j, 0);
@@ -215,12 +211,26 @@ private:
     }
 
     template <class P>
-    [[nodiscard]] double reference_energy(double j, const P& p, std::size_t step, double time) const {
-        if (!(j > j_sing()))
-            throw numerical_error(describe_particle(p, step, time) + ": J = " + gimlet::detail::to_text(j) +
-                                  " is at or beyond the singular compression 1 - 1/s = " + gimlet::detail::to_text(j_sing()) +
-                                  " of the reference isentrope");
+    [[nodiscard]] GIMLET_INLINE double reference_energy(double j, const P& p, std::size_t step, double time) const {
+        if (!(j > j_sing())) beyond_singularity(j, p, step, time);
         return table_->at(*this, j);
+    }
+
+    // The messages of update's two checks, out of line (GIMLET_COLD).
+    template <class P>
+    [[noreturn]] GIMLET_COLD void beyond_singularity(double j, const P& p, std::size_t step, double time) const {
+        throw numerical_error(describe_particle(p, step, time) + ": J = " + gimlet::detail::to_text(j) +
+                              " is at or beyond the singular compression 1 - 1/s = " + gimlet::detail::to_text(j_sing()) +
+                              " of the reference isentrope");
+    }
+    template <class P>
+    [[noreturn]] GIMLET_COLD void too_cold(double j, double e_th, double below, const P& p, std::size_t step,
+                                           double time) const {
+        throw numerical_error(describe_particle(p, step, time) + ": thermal energy e_th = " +
+                              gimlet::detail::to_text(e_th) + " J/kg is below the reference isentrope e_s(V) by " +
+                              gimlet::detail::to_text(below) + " J/kg (" + gimlet::detail::to_text(below / cv_) +
+                              " K, more than cold_tolerance " + gimlet::detail::to_text(cold_) + " K) at J = " +
+                              gimlet::detail::to_text(j) + ": the numerics lost energy");
     }
 
     double rho0_, c0_, s_, gamma_, cv_, t0_, cold_;
