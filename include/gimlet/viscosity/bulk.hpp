@@ -3,6 +3,7 @@
 /// \file
 /// Bulk artificial viscosity with linear and quadratic terms on the cell scale.
 
+#include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/viscosity/concepts.hpp"
 
@@ -42,7 +43,7 @@ public:
     /// material update passes one): it is then asked for only in compression, where q reads it.
     template <class Real, class C, class P>
         requires std::convertible_to<C, Real> || std::is_invocable_r_v<Real, const C&>
-    [[nodiscard]] Real pressure(const point_step<Real>& st, const C& sound_speed, const P& p) const {
+    [[nodiscard]] GIMLET_INLINE Real pressure(const point_step<Real>& st, const C& sound_speed, const P& p) const {
         const Real rate = st.D.trace() < 0 ? -st.D.trace() : Real(0);
         p.template get<fields::compression_rate>() = rate;
         if (!(rate > 0)) return Real(0);
