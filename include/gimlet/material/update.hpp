@@ -152,7 +152,7 @@ void update_material_point(const M& mat, const P& p,
     st.length = cell;
 
     const tensor3 sigma_old = stress3(p);
-    tensor3 s = sigma_old - (sigma_old.trace() / real(3)) * tensor3::Identity();
+    tensor3 s = minus_identity(sigma_old, sigma_old.trace() / real(3));
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) {
@@ -192,7 +192,7 @@ void update_material_point(const M& mat, const P& p,
     const real pres = mat.eos.pressure(st, p);
     if (!std::isfinite(pres))
         throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");
-    const tensor3 sigma_new = s - (pres + q) * tensor3::Identity();
+    const tensor3 sigma_new = minus_identity(s, pres + q);
     e = st.energy_before_pressure - st.pressure_work_factor * pres;
     if constexpr (M::thermal_type::enabled) mat.thermal.update(st, dissipated, p);
     else (void)dissipated;

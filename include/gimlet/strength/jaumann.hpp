@@ -12,7 +12,7 @@ namespace gimlet::strength {
 /// The deviator a - tr(a)/3 I of a 3x3 tensor.
 template <class Real>
 [[nodiscard]] GIMLET_INLINE Eigen::Matrix<Real, 3, 3> deviator(const Eigen::Matrix<Real, 3, 3>& a) {
-    return a - (a.trace() / Real(3)) * Eigen::Matrix<Real, 3, 3>::Identity();
+    return minus_identity(a, a.trace() / Real(3));
 }
 
 /// The rotation part of a Jaumann-rate update over one step: s <- Q s Q^T with
