@@ -174,7 +174,7 @@ void update_material_point(const M& mat, const P& p,
     // -pressure_work_factor * P^{n+1}.
     real& e = p.template get<fields::specific_internal_energy>();
     const real v_mid = real(0.5) * (real(1) + j_old / st.J) / st.density;
-    const tensor3 known = real(0.5) * (sigma_old + s - q * tensor3::Identity());
+    const tensor3 known = real(0.5) * minus_identity(tensor3(sigma_old + s), q);
     real power;  // known : D
     if constexpr (dim == 2)  // D_zz = 0 in plane strain; the terms summed as the 3x3 sum pairs them
         power = (known(0, 0) * st.D(0, 0) + known(1, 1) * st.D(1, 1)) + (known(1, 0) * st.D(1, 0) + known(0, 1) * st.D(0, 1));
