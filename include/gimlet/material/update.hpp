@@ -12,6 +12,7 @@
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/space.hpp"
 #include "gimlet/eos/concepts.hpp"
+#include "gimlet/strength/jaumann.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -152,7 +153,7 @@ void update_material_point(const M& mat, const P& p,
     st.length = cell;
 
     const tensor3 sigma_old = stress3(p);
-    tensor3 s = minus_identity(sigma_old, sigma_old.trace() / real(3));
+    tensor3 s = strength::deviator(sigma_old);
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) {

@@ -27,8 +27,8 @@
 #include "gimlet/solver/slabs.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <array>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
