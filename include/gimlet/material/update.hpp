@@ -107,6 +107,13 @@ void update_material_point(const M& mat, const P& p,
 
     matrix& F = p.template get<fields::deformation_gradient>();
     const real j_old = F.determinant();
+    // The old stress and its deviator first, well before the strength policy reads them: built
+    // entry by entry, they reach memory in 8-byte stores, and a 16-byte load of two of them
+    // right after (g++ pairs entries in the rotation) waits for the stores to drain
+    // (store-to-load forwarding fails). Computed after F, that was 13-15 % of the elastic update
+    // (docs/performance.md, "Stores the loads wait for").
+    const tensor3 sigma_old = stress3(p);
+    tensor3 s = strength::deviator(sigma_old);
     // The midpoint (Cayley) form of F' = L F (Hughes & Winget 1980, eq. 14; docs/physics.md
     // section 1, step 5). Unlike the forward-Euler (I + dt L) F, it keeps det F = 1 exactly under
     // a rigid spin, so a rotating body gains no spurious pressure; both are first-order consistent.
@@ -152,8 +159,6 @@ void update_material_point(const M& mat, const P& p,
     }
     st.length = cell;
 
-    const tensor3 sigma_old = stress3(p);
-    tensor3 s = strength::deviator(sigma_old);
     const real dissipated = mat.strength.update(st, s, p);
     real q = 0;
     if constexpr (M::viscosity_type::enabled) {
