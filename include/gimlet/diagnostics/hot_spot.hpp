@@ -55,9 +55,34 @@ template <class Solver>
     const std::size_t n = store.size();
     if (n == 0) return r;
 
+    // The passes over the particles run on the solver's threads from 4096 particles, in
+    // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
+    // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
+    int threads = detail::default_threads();
+    if constexpr (requires { s.options().threads; })
+        if (s.options().threads > 0) threads = s.options().threads;
+    const auto count_n = static_cast<std::ptrdiff_t>(n);
+    const bool parallel = count_n >= 4096 && threads > 1;
+    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
+    const std::size_t block = (n + blocks - 1) / blocks;
+    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+    auto block_range = [&](std::ptrdiff_t b) {
+        const std::size_t first = std::min(n, std::size_t(b) * block);
+        return std::array<std::size_t, 2>{first, std::min(n, first + block)};
+    };
+
     // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
+    std::vector<vector> block_lo(blocks, x[0]), block_hi(blocks, x[0]);
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+    for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
+        const auto [first, last] = block_range(b);
+        vector lo_b = x[0], hi_b = x[0];
+        for (std::size_t i = first; i < last; ++i) lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
+        block_lo[std::size_t(b)] = lo_b;
+        block_hi[std::size_t(b)] = hi_b;
+    }
     vector lo = x[0], hi = x[0];
-    for (std::size_t i = 0; i < n; ++i) lo = lo.cwiseMin(x[i]), hi = hi.cwiseMax(x[i]);
+    for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
     std::array<std::size_t, dim> bins{};
     std::size_t total = 1;
     for (int d = 0; d < dim; ++d) {
@@ -74,45 +99,70 @@ template <class Solver>
     // sums is copied in that order (position, mass, mass times temperature), so that a disc
     // reads its bins' particles contiguously; the products are those the sums formed before
     // (where the compiler does not contract them into multiply-adds, as in a portable x86-64
-    // build; a native build may differ in the last bits, as it does anyway).
+    // build; a native build may differ in the last bits, as it does anyway). Each block counts
+    // its particles per bin and takes its offsets within each bin in block order, so the order
+    // is the serial sort's: by bin, then by index. (A per-block count for every bin: with more
+    // bins than particles per thread, the counting runs in one block.)
+    const std::size_t sort_blocks = blocks > 1 && total <= block ? blocks : 1;
+    const auto sort_blocks_n = static_cast<std::ptrdiff_t>(sort_blocks);
+    const std::size_t sort_block = (n + sort_blocks - 1) / sort_blocks;
     std::vector<std::size_t> start(total + 1, 0);
     std::vector<std::size_t> bin(n);
     std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
-    for (std::size_t i = 0; i < n; ++i) {
-        for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
-        bin[i] = flat(cell[i]);
-        ++start[bin[i] + 1];
+    std::vector<std::size_t> cursor(sort_blocks * total, 0);  // per block and bin: a count, then an offset
+    // Per block and bin, the hottest particle's temperature (for the bound on each disc below).
+    std::vector<double> block_max(sort_blocks * total, -std::numeric_limits<double>::infinity());
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && sort_blocks_n > 1))
+    for (std::ptrdiff_t b = 0; b < sort_blocks_n; ++b) {
+        std::size_t* count = cursor.data() + std::size_t(b) * total;
+        double* t_max = block_max.data() + std::size_t(b) * total;
+        for (std::size_t i = std::size_t(b) * sort_block, last = std::min(n, i + sort_block); i < last; ++i) {
+            for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
+            bin[i] = flat(cell[i]);
+            ++count[bin[i]];
+            t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
+        }
     }
-    for (std::size_t k = 0; k < total; ++k) start[k + 1] += start[k];
+    for (std::size_t k = 0, at = 0; k < total; ++k) {
+        start[k] = at;
+        for (std::size_t b = 0; b < sort_blocks; ++b) {
+            const std::size_t c = cursor[b * total + k];
+            cursor[b * total + k] = at;
+            at += c;
+        }
+    }
+    start[total] = n;
     std::vector<vector> sorted_x(n);
     std::vector<double> sorted_m(n), sorted_mT(n);
-    {
-        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t j = fill[bin[i]]++;
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && sort_blocks_n > 1))
+    for (std::ptrdiff_t b = 0; b < sort_blocks_n; ++b) {
+        std::size_t* at = cursor.data() + std::size_t(b) * total;
+        for (std::size_t i = std::size_t(b) * sort_block, last = std::min(n, i + sort_block); i < last; ++i) {
+            const std::size_t j = at[bin[i]]++;
             sorted_x[j] = x[i];
             sorted_m[j] = double(m[i]);
             sorted_mT[j] = double(m[i]) * double(T[i]);
         }
     }
 
-    // f(k) for each of the 3^dim bins around particle i's, in a fixed order.
+    // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
+    // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
+    // 3^dim offsets and testing each was most of the search's time (docs/performance.md,
+    // "The hot spot's bins").
     auto around = [&](std::size_t i, auto&& f) {
         const auto& b = cell[i];
-        std::array<int, dim> off{};
-        off.fill(-1);
-        while (true) {
-            bool valid = true;
-            std::array<std::size_t, dim> nb{};
-            for (int d = 0; d < dim; ++d) {
-                const long k = long(b[d]) + off[d];
-                if (k < 0 || k >= long(bins[d])) valid = false;
-                else nb[d] = std::size_t(k);
-            }
-            if (valid) f(flat(nb));
-            int d = 0;
-            while (d < dim && ++off[d] > 1) off[d] = -1, ++d;
-            if (d == dim) break;
+        std::array<std::size_t, dim> first{}, last{};
+        for (int d = 0; d < dim; ++d) {
+            first[d] = b[d] > 0 ? b[d] - 1 : 0;
+            last[d] = std::min(b[d] + 1, bins[d] - 1);
+        }
+        if constexpr (dim == 2) {
+            for (std::size_t y = first[1]; y <= last[1]; ++y)
+                for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f(y * bins[0] + x0);
+        } else {
+            for (std::size_t z = first[2]; z <= last[2]; ++z)
+                for (std::size_t y = first[1]; y <= last[1]; ++y)
+                    for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins[1] + y) * bins[0] + x0);
         }
     };
     // The mean over the disc centred on particle i, summed in bin order (the same sums
@@ -139,12 +189,14 @@ template <class Solver>
     // is small. "Cooler" keeps a margin of 1e-9 of that floor: a computed mean of equal
     // temperatures can round a few ulps above them, and without the margin every centre, the
     // hottest particle's own included, could be skipped.
-    std::vector<double> bin_max(total, -std::numeric_limits<double>::infinity());
+    // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks).
+    std::vector<double> bin_max = std::move(block_max);
+    for (std::size_t b = 1; b < sort_blocks; ++b)
+        for (std::size_t k = 0; k < total; ++k) bin_max[k] = std::max(bin_max[k], bin_max[b * total + k]);
+    bin_max.resize(total);
     std::size_t hottest = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        bin_max[bin[i]] = std::max(bin_max[bin[i]], double(T[i]));
+    for (std::size_t i = 0; i < n; ++i)
         if (T[i] > T[hottest]) hottest = i;
-    }
     r.max_temperature = std::max(0.0, double(T[hottest]));
     std::size_t unused = 0;
     const double floor = std::max(disc(hottest, unused), above);
@@ -161,11 +213,6 @@ template <class Solver>
         }
     };
     best_disc best;
-    int threads = detail::default_threads();
-    if constexpr (requires { s.options().threads; })
-        if (s.options().threads > 0) threads = s.options().threads;
-    (void)threads;  // read only by the OpenMP pragma
-    const auto count_n = static_cast<std::ptrdiff_t>(n);
     GIMLET_OMP(parallel num_threads(threads) if (count_n >= 4096))
     {
         best_disc local;
