@@ -5,6 +5,7 @@
 /// temperature depends on the resolution and on particle noise; a mean over a fixed physical
 /// size converges as the cell shrinks, so resolution studies can compare it.
 
+#include "gimlet/core/detail/block_offsets.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
@@ -106,7 +107,7 @@ template <class Solver>
     const std::size_t sort_blocks = blocks > 1 && total <= block ? blocks : 1;
     const auto sort_blocks_n = static_cast<std::ptrdiff_t>(sort_blocks);
     const std::size_t sort_block = (n + sort_blocks - 1) / sort_blocks;
-    std::vector<std::size_t> start(total + 1, 0);
+    std::vector<std::size_t> start;
     std::vector<std::size_t> bin(n);
     std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
     std::vector<std::size_t> cursor(sort_blocks * total, 0);  // per block and bin: a count, then an offset
@@ -123,15 +124,7 @@ template <class Solver>
             t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
         }
     }
-    for (std::size_t k = 0, at = 0; k < total; ++k) {
-        start[k] = at;
-        for (std::size_t b = 0; b < sort_blocks; ++b) {
-            const std::size_t c = cursor[b * total + k];
-            cursor[b * total + k] = at;
-            at += c;
-        }
-    }
-    start[total] = n;
+    detail::block_offsets(cursor, sort_blocks, total, start);
     std::vector<vector> sorted_x(n);
     std::vector<double> sorted_m(n), sorted_mT(n);
     GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && sort_blocks_n > 1))

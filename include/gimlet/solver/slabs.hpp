@@ -4,6 +4,7 @@
 /// The deterministic parallel scatter's schedule: particles grouped in slabs of node rows,
 /// slabs coloured so that no two of a colour share a node.
 
+#include "gimlet/core/detail/block_offsets.hpp"
 #include "gimlet/core/detail/omp.hpp"
 
 #include <algorithm>
@@ -66,17 +67,7 @@ public:
             std::size_t* count = block_cursor_.data() + std::size_t(b) * slabs;
             for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i) ++count[slab_of_[i]];
         }
-        slab_start_.assign(slabs + 1, 0);
-        std::size_t at = 0;
-        for (std::size_t s = 0; s < slabs; ++s) {
-            slab_start_[s] = at;
-            for (std::size_t b = 0; b < blocks; ++b) {
-                const std::size_t c = block_cursor_[b * slabs + s];
-                block_cursor_[b * slabs + s] = at;
-                at += c;
-            }
-        }
-        slab_start_[slabs] = at;
+        detail::block_offsets(block_cursor_, blocks, slabs, slab_start_);
         slab_particles_.resize(n);
         GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && blocks_n > 1))
         for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
