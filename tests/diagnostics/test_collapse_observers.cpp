@@ -279,6 +279,67 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     }
 }
 
+TEST_CASE("surface_gap and void_chord: the same walls and speeds on 1, 2 and 3 threads", "[diagnostics][threads]") {
+    // The scene of the test above (7,000 and more particles: the strips are gathered on the
+    // threads), each particle given a pseudo-random velocity, the same in every run: the walls'
+    // speeds are means over particle layers in the strip's sorted order, so a strip gathered in
+    // another order would show in their last bits.
+    gimlet::scene::scene<S, hmx> sc(grid());
+    const auto mat = gimlet::materials::make_hmx();
+    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
+    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
+                mat, S::vector::Zero(), 4, "lower");
+    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), 4, "upper");
+    std::vector<solver> runs;
+    for (const int threads : {1, 2, 3}) {
+        gimlet::solver_options<S> opt;
+        opt.threads = threads;
+        runs.emplace_back(sc, opt);
+    }
+    REQUIRE(runs[0].particles().size() >= 4096);
+    std::uint64_t state = 99;
+    for (std::size_t i = 0; i < runs[0].particles().size(); ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const double u = double(state >> 11) * 0x1p-53;
+        for (auto& run : runs) run.particles()[i].get<velocity>() = S::vector(100.0 * u - 50.0, 37.0 * u * u - 20.0);
+    }
+    const double strip = 0.6 * h;
+    const auto gap = gimlet::diagnostics::surface_gap(runs[0], 0, 1, 1, S::vector(10e-3, 16e-3), strip);
+    const auto axial = gimlet::diagnostics::void_chord(runs[0], 0, 1, S::vector(10e-3, 8e-3), strip, 0.25 * h);
+    const auto lateral = gimlet::diagnostics::void_chord(runs[0], 0, 0, S::vector(10e-3, 8e-3), strip, 0.25 * h);
+    REQUIRE(gap.found);
+    REQUIRE(axial.open);
+    REQUIRE(lateral.open);
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+        INFO("threads " << k + 1);
+        // The strips themselves, point for point (the sort keeps tied coordinates in the order
+        // gathered, so the gathered order must be the serial one).
+        for (const std::uint32_t body : {0u, 1u})
+            for (const int axis : {0, 1}) {
+                const auto mine = gimlet::diagnostics::detail::strip(runs[k], body, axis, S::vector(10e-3, 8e-3), strip);
+                const auto one = gimlet::diagnostics::detail::strip(runs[0], body, axis, S::vector(10e-3, 8e-3), strip);
+                REQUIRE(mine.size() == one.size());
+                bool same = true;
+                for (std::size_t q = 0; q < one.size(); ++q)
+                    same = same && mine[q].coordinate == one[q].coordinate && mine[q].velocity == one[q].velocity &&
+                           mine[q].half_spacing == one[q].half_spacing;
+                CHECK(same);
+            }
+        const auto g = gimlet::diagnostics::surface_gap(runs[k], 0, 1, 1, S::vector(10e-3, 16e-3), strip);
+        CHECK(g.found);
+        CHECK(g.lower_surface == gap.lower_surface);
+        CHECK(g.upper_surface == gap.upper_surface);
+        for (const auto& [mine, one] : {std::pair{gimlet::diagnostics::void_chord(runs[k], 0, 1, S::vector(10e-3, 8e-3), strip, 0.25 * h), axial},
+                                        std::pair{gimlet::diagnostics::void_chord(runs[k], 0, 0, S::vector(10e-3, 8e-3), strip, 0.25 * h), lateral}}) {
+            CHECK(mine.open == one.open);
+            CHECK(mine.lower_wall == one.lower_wall);
+            CHECK(mine.upper_wall == one.upper_wall);
+            CHECK(mine.lower_wall_velocity == one.lower_wall_velocity);
+            CHECK(mine.upper_wall_velocity == one.upper_wall_velocity);
+        }
+    }
+}
+
 // What diagnostics::hot_spot reads of a solver, and nothing else: particles with positions,
 // masses and temperatures, and a thread count. It tries the observer in 3-D and with unequal
 // masses (whose sums round differently in any other order) without compiling a solver.

@@ -11,6 +11,7 @@
 /// strip around the line count: |x_k - a_k| <= strip_half_width for every axis k other than the
 /// line's. The strip is not wrapped across periodic boundaries.
 
+#include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
 
@@ -42,26 +43,40 @@ void check_line(int axis, double strip_half_width) {
 }
 
 // The particles of `body` in the strip around the line through `point` along `axis`, sorted
-// by coordinate along the line.
+// by coordinate along the line. From 4096 particles the strip is gathered on the solver's
+// threads, a block of consecutive particles each, and the blocks' points joined in block
+// order: the sequence the serial pass gathers, so the sort returns the same.
 template <class Solver>
 std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
                                double strip_half_width) {
     check_line<Solver>(axis, strip_half_width);
-    std::vector<strip_point> out;
     const auto& store = s.particles();
     const auto& x = store.template column<fields::position>();
     const auto& v = store.template column<fields::velocity>();
     const auto& b = store.template column<fields::body>();
     const auto& v0 = store.template column<fields::volume0>();
-    for (std::size_t i = 0; i < store.size(); ++i) {
-        if (b[i] != body) continue;
-        bool inside = true;
-        for (int k = 0; k < Solver::dim; ++k)
-            if (k != axis && std::abs(double(x[i][k] - point[k])) > strip_half_width) inside = false;
-        if (!inside) continue;
-        const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
-        out.push_back({double(x[i][axis]), half, double(v[i][axis])});
+    const std::size_t n = store.size();
+    const int threads = gimlet::detail::threads_of(s);
+    const bool parallel = n >= 4096 && threads > 1;
+    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
+    const std::size_t block = (n + blocks - 1) / blocks;
+    std::vector<std::vector<strip_point>> found(blocks);
+    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+    for (std::ptrdiff_t k = 0; k < blocks_n; ++k) {
+        auto& out = found[std::size_t(k)];
+        for (std::size_t i = std::size_t(k) * block, last = std::min(n, i + block); i < last; ++i) {
+            if (b[i] != body) continue;
+            bool inside = true;
+            for (int d = 0; d < Solver::dim; ++d)
+                if (d != axis && std::abs(double(x[i][d] - point[d])) > strip_half_width) inside = false;
+            if (!inside) continue;
+            const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
+            out.push_back({double(x[i][axis]), half, double(v[i][axis])});
+        }
     }
+    std::vector<strip_point> out = std::move(found[0]);
+    for (std::size_t k = 1; k < blocks; ++k) out.insert(out.end(), found[k].begin(), found[k].end());
     std::sort(out.begin(), out.end());
     return out;
 }

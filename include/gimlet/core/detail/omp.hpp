@@ -22,4 +22,13 @@ namespace gimlet::detail {
 #endif
 }
 
+/// The thread count a solver (or any object with `options().threads`) asks for: that count
+/// where it is positive, otherwise default_threads().
+template <class Solver>
+[[nodiscard]] int threads_of(const Solver& s) noexcept {
+    if constexpr (requires { s.options().threads; })
+        if (s.options().threads > 0) return int(s.options().threads);
+    return default_threads();
+}
+
 }  // namespace gimlet::detail
