@@ -279,7 +279,7 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     }
 }
 
-TEST_CASE("surface_gap and void_chord: the same walls and speeds on 1, 2 and 3 threads", "[diagnostics][threads]") {
+TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and sums on 1, 2 and 3 threads", "[diagnostics][threads]") {
     // The scene of the test above (7,000 and more particles: the strips are gathered on the
     // threads), each particle given a pseudo-random velocity, the same in every run: the walls'
     // speeds are means over particle layers in the strip's sorted order, so a strip gathered in
@@ -301,8 +301,18 @@ TEST_CASE("surface_gap and void_chord: the same walls and speeds on 1, 2 and 3 t
     for (std::size_t i = 0; i < runs[0].particles().size(); ++i) {
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;
         const double u = double(state >> 11) * 0x1p-53;
-        for (auto& run : runs) run.particles()[i].get<velocity>() = S::vector(100.0 * u - 50.0, 37.0 * u * u - 20.0);
+        for (auto& run : runs) {
+            auto p = run.particles()[i];
+            p.get<velocity>() = S::vector(100.0 * u - 50.0, 37.0 * u * u - 20.0);
+            // For hot_material below: unequal masses, temperatures and volumes.
+            p.get<gimlet::fields::mass>() *= 0.5 + u;
+            p.get<temperature>() = 300.0 + 1000.0 * u;
+            p.get<gimlet::fields::deformation_gradient>()(0, 0) = 0.9 + 0.2 * u * u;
+        }
     }
+    const std::vector<double> levels{400.0, 700.0, 1250.0};
+    const auto hot = gimlet::diagnostics::hot_material(runs[0], levels);
+    REQUIRE(hot.mass[0] > hot.mass[1]);
     const double strip = 0.6 * h;
     const auto gap = gimlet::diagnostics::surface_gap(runs[0], 0, 1, 1, S::vector(10e-3, 16e-3), strip);
     const auto axial = gimlet::diagnostics::void_chord(runs[0], 0, 1, S::vector(10e-3, 8e-3), strip, 0.25 * h);
@@ -326,6 +336,9 @@ TEST_CASE("surface_gap and void_chord: the same walls and speeds on 1, 2 and 3 t
                 CHECK(same);
             }
         const auto g = gimlet::diagnostics::surface_gap(runs[k], 0, 1, 1, S::vector(10e-3, 16e-3), strip);
+        const auto above = gimlet::diagnostics::hot_material(runs[k], levels);
+        CHECK(above.mass == hot.mass);
+        CHECK(above.volume == hot.volume);
         CHECK(g.found);
         CHECK(g.lower_surface == gap.lower_surface);
         CHECK(g.upper_surface == gap.upper_surface);

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace gimlet::diagnostics {
@@ -59,9 +60,7 @@ template <class Solver>
     // The passes over the particles run on the solver's threads from 4096 particles, in
     // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
     // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
-    int threads = detail::default_threads();
-    if constexpr (requires { s.options().threads; })
-        if (s.options().threads > 0) threads = s.options().threads;
+    const int threads = detail::threads_of(s);
     const auto count_n = static_cast<std::ptrdiff_t>(n);
     const bool parallel = count_n >= 4096 && threads > 1;
     const std::size_t blocks = parallel ? std::size_t(threads) : 1;
@@ -249,12 +248,28 @@ template <class Solver>
     hot_material_result r;
     r.mass.assign(temperatures.size(), 0.0);
     r.volume.assign(temperatures.size(), 0.0);
-    for (std::size_t i = 0; i < store.size(); ++i)
-        for (std::size_t k = 0; k < temperatures.size(); ++k)
-            if (double(T[i]) > temperatures[k]) {
-                r.mass[k] += double(m[i]);
-                r.volume[k] += double(F[i].determinant()) * double(v0[i]);
-            }
+    // From 4096 particles the hot particles are found on the solver's threads, a block of
+    // consecutive particles each, with their current volumes; the sums then run over them in
+    // particle order, as the serial pass summed them.
+    const std::size_t n = store.size();
+    const int threads = detail::threads_of(s);
+    const bool parallel = n >= 4096 && threads > 1;
+    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
+    const std::size_t block = (n + blocks - 1) / blocks;
+    std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, det(F) V0)
+    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+    for (std::ptrdiff_t b = 0; b < blocks_n; ++b)
+        for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i)
+            if (std::any_of(temperatures.begin(), temperatures.end(), [&](double t) { return double(T[i]) > t; }))
+                hot[std::size_t(b)].push_back({i, double(F[i].determinant()) * double(v0[i])});
+    for (const auto& found : hot)
+        for (const auto& [i, volume] : found)
+            for (std::size_t k = 0; k < temperatures.size(); ++k)
+                if (double(T[i]) > temperatures[k]) {
+                    r.mass[k] += double(m[i]);
+                    r.volume[k] += volume;
+                }
     return r;
 }
 
