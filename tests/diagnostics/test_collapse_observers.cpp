@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -39,6 +40,24 @@ solver two_blocks(int ppc_lower, int ppc_upper) {
                 mat, S::vector::Zero(), ppc_lower, "lower");
     sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), ppc_upper, "upper");
     return solver(sc);
+}
+
+// The scene of two_blocks at 4 x 4 particles per cell (7,000 and more: the observers then run
+// on the threads), as three solvers on 1, 2 and 3 threads.
+std::vector<solver> on_1_2_3_threads() {
+    gimlet::scene::scene<S, hmx> sc(grid());
+    const auto mat = gimlet::materials::make_hmx();
+    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
+    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
+                mat, S::vector::Zero(), 4, "lower");
+    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), 4, "upper");
+    std::vector<solver> runs;
+    for (const int threads : {1, 2, 3}) {
+        gimlet::solver_options<S> opt;
+        opt.threads = threads;
+        runs.emplace_back(sc, opt);
+    }
+    return runs;
 }
 
 }  // namespace
@@ -234,18 +253,7 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     // pseudo-random temperatures that tie often, then uniform ones (no centre skipped), then a
     // power of two, where every disc's mean is exactly that temperature: all tie, and the disc
     // around particle 0 must win.
-    gimlet::scene::scene<S, hmx> sc(grid());
-    const auto mat = gimlet::materials::make_hmx();
-    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
-    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
-                mat, S::vector::Zero(), 4, "lower");
-    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), 4, "upper");
-    std::vector<solver> runs;
-    for (const int threads : {1, 2, 3}) {
-        gimlet::solver_options<S> opt;
-        opt.threads = threads;
-        runs.emplace_back(sc, opt);
-    }
+    std::vector<solver> runs = on_1_2_3_threads();
     REQUIRE(runs[0].particles().size() >= 4096);
     for (const int kind : {0, 1, 2}) {
         std::uint64_t state = 777;
@@ -284,18 +292,7 @@ TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and 
     // threads), each particle given a pseudo-random velocity, the same in every run: the walls'
     // speeds are means over particle layers in the strip's sorted order, so a strip gathered in
     // another order would show in their last bits.
-    gimlet::scene::scene<S, hmx> sc(grid());
-    const auto mat = gimlet::materials::make_hmx();
-    using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
-    sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
-                mat, S::vector::Zero(), 4, "lower");
-    sc.add_body(box<S>(S::vector(0.0, 18e-3), S::vector(20e-3, 30e-3)), mat, S::vector::Zero(), 4, "upper");
-    std::vector<solver> runs;
-    for (const int threads : {1, 2, 3}) {
-        gimlet::solver_options<S> opt;
-        opt.threads = threads;
-        runs.emplace_back(sc, opt);
-    }
+    std::vector<solver> runs = on_1_2_3_threads();
     REQUIRE(runs[0].particles().size() >= 4096);
     std::uint64_t state = 99;
     for (std::size_t i = 0; i < runs[0].particles().size(); ++i) {
@@ -414,6 +411,28 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
     CHECK(disc(one.centre, count) == Approx(one.temperature).epsilon(1e-12));
     CHECK(count == one.particles);
     CHECK(one.max_temperature == *std::max_element(ts.begin(), ts.end()));
+    // The named disc's mean summed in the documented order, to the bit: bins of side `radius`
+    // from the particles' lowest corner, the bins around the centre's with the first axis
+    // fastest, each bin's particles by index.
+    {
+        typename particles_only<Dim>::vector lo = xs[0];
+        for (const auto& x : xs) lo = lo.cwiseMin(x);
+        auto bin_of = [&](const auto& x, int d) { return long(double(x[d] - lo[d]) / radius); };
+        std::array<long, 3> centre_bin{}, at{};
+        for (int d = 0; d < Dim; ++d) centre_bin[std::size_t(d)] = bin_of(one.centre, d);
+        double mass = 0, heat = 0;
+        for (at[2] = Dim == 3 ? centre_bin[2] - 1 : 0; at[2] <= (Dim == 3 ? centre_bin[2] + 1 : 0); ++at[2])
+            for (at[1] = centre_bin[1] - 1; at[1] <= centre_bin[1] + 1; ++at[1])
+                for (at[0] = centre_bin[0] - 1; at[0] <= centre_bin[0] + 1; ++at[0])
+                    for (std::size_t q = 0; q < st.size(); ++q) {
+                        bool in_bin = true;
+                        for (int d = 0; d < Dim; ++d) in_bin = in_bin && bin_of(xs[q], d) == at[std::size_t(d)];
+                        if (!in_bin || double((xs[q] - one.centre).squaredNorm()) > radius * radius) continue;
+                        mass += double(ms[q]);
+                        heat += double(ms[q]) * double(ts[q]);
+                    }
+        CHECK(heat / mass == one.temperature);
+    }
     for (const int threads : {2, 3}) {
         run.opt.threads = threads;
         for (const double above : {-std::numeric_limits<double>::infinity(), std::nextafter(one.temperature, 0.0)}) {

@@ -101,9 +101,9 @@ template <class Solver>
     // (where the compiler does not contract them into multiply-adds, as in a portable x86-64
     // build; a native build may differ in the last bits, as it does anyway). Each block counts
     // its particles per bin and takes its offsets within each bin in block order, so the order
-    // is the serial sort's: by bin, then by index. (A per-block count for every bin: with more
-    // bins than particles per thread, the counting runs in one block.)
-    const std::size_t sort_blocks = blocks > 1 && total <= block ? blocks : 1;
+    // is the serial sort's: by bin, then by index. (A count per block and bin: at most n / bins
+    // blocks, so that the counts take no more room than the particles.)
+    const std::size_t sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
     const auto sort_blocks_n = static_cast<std::ptrdiff_t>(sort_blocks);
     const std::size_t sort_block = (n + sort_blocks - 1) / sort_blocks;
     std::vector<std::size_t> start;
@@ -139,8 +139,8 @@ template <class Solver>
 
     // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
     // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
-    // 3^dim offsets and testing each was most of the search's time (docs/performance.md,
-    // "The hot spot's bins").
+    // 3^dim offsets and testing each cost a fifth of the search's instructions
+    // (docs/performance.md, "The hot spot's bins").
     auto around = [&](std::size_t i, auto&& f) {
         const auto& b = cell[i];
         std::array<std::size_t, dim> first{}, last{};

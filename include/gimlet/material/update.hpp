@@ -110,7 +110,7 @@ void update_material_point(const M& mat, const P& p,
     // The old stress and its deviator first, well before the strength policy reads them: built
     // entry by entry, they reach memory in 8-byte stores, and a 16-byte load of two of them
     // right after (g++ pairs entries in the rotation) waits for the stores to drain
-    // (store-to-load forwarding fails). Computed after F, that was 13-15 % of the elastic update
+    // (store-to-load forwarding fails). Computed after F, that was 13-15 % of bench_lanes' update
     // (docs/performance.md, "Stores the loads wait for").
     const tensor3 sigma_old = stress3(p);
     tensor3 s = strength::deviator(sigma_old);
