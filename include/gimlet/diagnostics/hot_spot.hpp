@@ -5,7 +5,7 @@
 /// temperature depends on the resolution and on particle noise; a mean over a fixed physical
 /// size converges as the cell shrinks, so resolution studies can compare it.
 
-#include "gimlet/core/detail/block_offsets.hpp"
+#include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
@@ -62,25 +62,16 @@ template <class Solver>
     // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
     const int threads = detail::threads_of(s);
     const auto count_n = static_cast<std::ptrdiff_t>(n);
-    const bool parallel = count_n >= 4096 && threads > 1;
-    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
-    const std::size_t block = (n + blocks - 1) / blocks;
-    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-    auto block_range = [&](std::ptrdiff_t b) {
-        const std::size_t first = std::min(n, std::size_t(b) * block);
-        return std::array<std::size_t, 2>{first, std::min(n, first + block)};
-    };
+    const std::size_t blocks = detail::observer_blocks(n, threads);
 
     // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
     std::vector<vector> block_lo(blocks, x[0]), block_hi(blocks, x[0]);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
-    for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
-        const auto [first, last] = block_range(b);
+    detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         vector lo_b = x[0], hi_b = x[0];
         for (std::size_t i = first; i < last; ++i) lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
-        block_lo[std::size_t(b)] = lo_b;
-        block_hi[std::size_t(b)] = hi_b;
-    }
+        block_lo[b] = lo_b;
+        block_hi[b] = hi_b;
+    });
     vector lo = x[0], hi = x[0];
     for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
     std::array<std::size_t, dim> bins{};
@@ -104,38 +95,34 @@ template <class Solver>
     // is the serial sort's: by bin, then by index. (A count per block and bin: at most n / bins
     // blocks, so that the counts take no more room than the particles.)
     const std::size_t sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
-    const auto sort_blocks_n = static_cast<std::ptrdiff_t>(sort_blocks);
-    const std::size_t sort_block = (n + sort_blocks - 1) / sort_blocks;
     std::vector<std::size_t> start;
     std::vector<std::size_t> bin(n);
     std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
     std::vector<std::size_t> cursor(sort_blocks * total, 0);  // per block and bin: a count, then an offset
     // Per block and bin, the hottest particle's temperature (for the bound on each disc below).
     std::vector<double> block_max(sort_blocks * total, -std::numeric_limits<double>::infinity());
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && sort_blocks_n > 1))
-    for (std::ptrdiff_t b = 0; b < sort_blocks_n; ++b) {
-        std::size_t* count = cursor.data() + std::size_t(b) * total;
-        double* t_max = block_max.data() + std::size_t(b) * total;
-        for (std::size_t i = std::size_t(b) * sort_block, last = std::min(n, i + sort_block); i < last; ++i) {
+    detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+        std::size_t* count = cursor.data() + b * total;
+        double* t_max = block_max.data() + b * total;
+        for (std::size_t i = first; i < last; ++i) {
             for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
             bin[i] = flat(cell[i]);
             ++count[bin[i]];
             t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
         }
-    }
+    });
     detail::block_offsets(cursor, sort_blocks, total, start);
     std::vector<vector> sorted_x(n);
     std::vector<double> sorted_m(n), sorted_mT(n);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && sort_blocks_n > 1))
-    for (std::ptrdiff_t b = 0; b < sort_blocks_n; ++b) {
-        std::size_t* at = cursor.data() + std::size_t(b) * total;
-        for (std::size_t i = std::size_t(b) * sort_block, last = std::min(n, i + sort_block); i < last; ++i) {
+    detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+        std::size_t* at = cursor.data() + b * total;
+        for (std::size_t i = first; i < last; ++i) {
             const std::size_t j = at[bin[i]]++;
             sorted_x[j] = x[i];
             sorted_m[j] = double(m[i]);
             sorted_mT[j] = double(m[i]) * double(T[i]);
         }
-    }
+    });
 
     // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
     // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
@@ -205,7 +192,7 @@ template <class Solver>
         }
     };
     best_disc best;
-    GIMLET_OMP(parallel num_threads(threads) if (count_n >= 4096))
+    GIMLET_OMP(parallel num_threads(threads) if (blocks > 1))
     {
         best_disc local;
         GIMLET_OMP(for schedule(dynamic, 256) nowait)
@@ -253,16 +240,13 @@ template <class Solver>
     // particle order, as the serial pass summed them.
     const std::size_t n = store.size();
     const int threads = detail::threads_of(s);
-    const bool parallel = n >= 4096 && threads > 1;
-    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
-    const std::size_t block = (n + blocks - 1) / blocks;
+    const std::size_t blocks = detail::observer_blocks(n, threads);
     std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, det(F) V0)
-    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
-    for (std::ptrdiff_t b = 0; b < blocks_n; ++b)
-        for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i)
+    detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i)
             if (std::any_of(temperatures.begin(), temperatures.end(), [&](double t) { return double(T[i]) > t; }))
-                hot[std::size_t(b)].push_back({i, double(F[i].determinant()) * double(v0[i])});
+                hot[b].push_back({i, double(F[i].determinant()) * double(v0[i])});
+    });
     for (const auto& found : hot)
         for (const auto& [i, volume] : found)
             for (std::size_t k = 0; k < temperatures.size(); ++k)

@@ -11,6 +11,7 @@
 /// strip around the line count: |x_k - a_k| <= strip_half_width for every axis k other than the
 /// line's. The strip is not wrapped across periodic boundaries.
 
+#include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
@@ -57,15 +58,11 @@ std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, co
     const auto& v0 = store.template column<fields::volume0>();
     const std::size_t n = store.size();
     const int threads = gimlet::detail::threads_of(s);
-    const bool parallel = n >= 4096 && threads > 1;
-    const std::size_t blocks = parallel ? std::size_t(threads) : 1;
-    const std::size_t block = (n + blocks - 1) / blocks;
+    const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
     std::vector<std::vector<strip_point>> found(blocks);
-    const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
-    for (std::ptrdiff_t k = 0; k < blocks_n; ++k) {
-        auto& out = found[std::size_t(k)];
-        for (std::size_t i = std::size_t(k) * block, last = std::min(n, i + block); i < last; ++i) {
+    gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t k, std::size_t first, std::size_t last) {
+        auto& out = found[k];
+        for (std::size_t i = first; i < last; ++i) {
             if (b[i] != body) continue;
             bool inside = true;
             for (int d = 0; d < Solver::dim; ++d)
@@ -74,7 +71,7 @@ std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, co
             const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
             out.push_back({double(x[i][axis]), half, double(v[i][axis])});
         }
-    }
+    });
     std::vector<strip_point> out = std::move(found[0]);
     for (std::size_t k = 1; k < blocks; ++k) out.insert(out.end(), found[k].begin(), found[k].end());
     std::sort(out.begin(), out.end());

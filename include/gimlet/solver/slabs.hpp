@@ -4,7 +4,7 @@
 /// The deterministic parallel scatter's schedule: particles grouped in slabs of node rows,
 /// slabs coloured so that no two of a colour share a node.
 
-#include "gimlet/core/detail/block_offsets.hpp"
+#include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
 
 #include <algorithm>
@@ -59,22 +59,17 @@ public:
         // blocks x slabs); the order does not depend on the blocks.
         const std::size_t n = slab_of_.size(), slabs = std::size_t(slabs_);
         const std::size_t blocks = std::min<std::size_t>((n + 4095) / 4096, 64);
-        const std::size_t block = blocks > 0 ? (n + blocks - 1) / blocks : 1;
-        const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
         block_cursor_.assign(blocks * slabs, 0);
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && blocks_n > 1))
-        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
-            std::size_t* count = block_cursor_.data() + std::size_t(b) * slabs;
-            for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i) ++count[slab_of_[i]];
-        }
+        detail::for_each_block(n, blocks, parallel, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+            std::size_t* count = block_cursor_.data() + b * slabs;
+            for (std::size_t i = first; i < last; ++i) ++count[slab_of_[i]];
+        });
         detail::block_offsets(block_cursor_, blocks, slabs, slab_start_);
         slab_particles_.resize(n);
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && blocks_n > 1))
-        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
-            std::size_t* cursor = block_cursor_.data() + std::size_t(b) * slabs;
-            for (std::size_t i = std::size_t(b) * block, last = std::min(n, i + block); i < last; ++i)
-                slab_particles_[cursor[slab_of_[i]]++] = i;
-        }
+        detail::for_each_block(n, blocks, parallel, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+            std::size_t* cursor = block_cursor_.data() + b * slabs;
+            for (std::size_t i = first; i < last; ++i) slab_particles_[cursor[slab_of_[i]]++] = i;
+        });
     }
 
     /// f(i) for every particle, slab by slab and colour by colour, on `threads` threads if
