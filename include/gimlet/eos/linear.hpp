@@ -15,6 +15,8 @@ namespace gimlet::eos {
 class linear {
 public:
     using required_fields = field_list<>;
+    /// Its templates compute lane by lane for a lane type (gimlet::lane_safe).
+    static constexpr bool lane_safe = true;
 
     /// \param bulk_modulus K in Pa, finite and > 0.
     explicit linear(double bulk_modulus) : k_(bulk_modulus) {

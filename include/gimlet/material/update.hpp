@@ -8,6 +8,7 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/lanes.hpp"
 #include "gimlet/material/material.hpp"
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/space.hpp"
@@ -19,6 +20,7 @@
 #include <cstddef>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 namespace gimlet {
 
@@ -134,12 +136,18 @@ void update_material_point(const M& mat, const P& p,
 
     point_step<real> st;
     static_cast<point_state<real>&>(st) = point_state_of(p, mat);
-    if (!std::isfinite(st.J))
-        throw numerical_error(describe_particle(p, step, time) +
-                              ": velocity gradient is not finite (a non-finite value reached its nodes)");
-    if (!(st.J > 0))
-        throw numerical_error(describe_particle(p, step, time) + ": det F = " +
-                              detail::to_text(double(st.J)) + " <= 0 (inverted particle)");
+    if constexpr (is_lanes<real>) {
+        // Two particles at once (update_material_points_2): a particle that would stop the run
+        // leaves the pair to the one-at-a-time update, which names it.
+        if (!(finite_lanes(st.J) && st.J > real(0)).all()) return p.reject();
+    } else {
+        if (!std::isfinite(st.J))
+            throw numerical_error(describe_particle(p, step, time) +
+                                  ": velocity gradient is not finite (a non-finite value reached its nodes)");
+        if (!(st.J > 0))
+            throw numerical_error(describe_particle(p, step, time) + ": det F = " +
+                                  detail::to_text(double(st.J)) + " <= 0 (inverted particle)");
+    }
     st.dt = dt;
     st.J_old = j_old;
     st.step = step;
@@ -196,8 +204,11 @@ void update_material_point(const M& mat, const P& p,
         st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
     }
     const real pres = mat.eos.pressure(st, p);
-    if (!std::isfinite(pres))
+    if constexpr (is_lanes<real>) {
+        if (!finite_lanes(pres).all()) return p.reject();
+    } else if (!std::isfinite(pres)) {
         throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");
+    }
     const tensor3 sigma_new = minus_identity(s, pres + q);
     e = st.energy_before_pressure - st.pressure_work_factor * pres;
     if constexpr (M::thermal_type::enabled) mat.thermal.update(st, dissipated, p);
@@ -205,5 +216,89 @@ void update_material_point(const M& mat, const P& p,
     p.template get<fields::stress>() = in_plane<dim>(sigma_new);
     if constexpr (dim == 2) p.template get<fields::stress_zz>() = sigma_new(2, 2);
 }
+
+/// Whether the solver may update two particles of material M at once (update_material_points_2):
+/// plane strain in double, a strength and an EOS that are lane_safe, no thermal policy, no
+/// viscosity and no EOS that reads the shear energy (the update's own code for those branches
+/// on values).
+template <Material M, class S>
+inline constexpr bool lanes_capable = [] {
+    if constexpr (GIMLET_HAS_LANES && S::dim == 2 && std::is_same_v<typename S::real, double>)
+        return lane_safe<typename M::strength_type> && lane_safe<typename M::eos_type> && !M::thermal_type::enabled &&
+               !M::viscosity_type::enabled && !eos::reads_shear_energy<typename M::eos_type>;
+    else
+        return false;
+}();
+
+#if GIMLET_HAS_LANES
+namespace detail {
+/// Two plane-strain particles as one particle handle whose scalar is lanes2: copies of the
+/// fields the material update reads and writes (update_material_points_2 loads and stores
+/// them). A lane_safe policy reads nothing through its handle.
+struct lane_space2 {
+    static constexpr int dim = 2;
+    using real = lanes2;
+    using vector = Eigen::Matrix<lanes2, 2, 1>;
+    using matrix = Eigen::Matrix<lanes2, 2, 2>;
+    using tensor3 = Eigen::Matrix<lanes2, 3, 3>;
+};
+struct particle_pair {
+    using space_type = lane_space2;
+    mutable lane_space2::matrix F, stress;
+    mutable lanes2 stress_zz, energy, mass, volume0;
+    mutable bool rejected = false;
+    void reject() const noexcept { rejected = true; }
+    template <class Field>
+    [[nodiscard]] auto& get() const noexcept {
+        if constexpr (std::is_same_v<Field, fields::deformation_gradient>) return F;
+        else if constexpr (std::is_same_v<Field, fields::stress>) return stress;
+        else if constexpr (std::is_same_v<Field, fields::stress_zz>) return stress_zz;
+        else if constexpr (std::is_same_v<Field, fields::specific_internal_energy>) return energy;
+        else if constexpr (std::is_same_v<Field, fields::mass>) return mass;
+        else if constexpr (std::is_same_v<Field, fields::volume0>) return volume0;
+        else static_assert(sizeof(Field) == 0, "a lane_safe policy reads no field through its particle handle");
+    }
+};
+}  // namespace detail
+
+/// update_material_point for particles a and b of one material at once, two lanes of one
+/// vector (lanes_capable<M>): the same operations on each particle as its own update, so the
+/// same bits. Returns false, having written nothing, where either particle would stop the run
+/// (det F not positive or not finite, a non-finite pressure): the caller then updates them one
+/// at a time, which stops with the message that names the particle.
+template <Material M, class P>
+[[nodiscard]] bool update_material_points_2(const M& mat, const P& a, const P& b, const typename P::space_type::matrix& La,
+                                            const typename P::space_type::matrix& Lb, double dt, double cell,
+                                            std::size_t step, double time) {
+    static_assert(lanes_capable<M, typename P::space_type>);
+    using matrix2 = detail::lane_space2::matrix;
+    auto pack = [](const auto& x, const auto& y) {
+        matrix2 r;
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) r(i, j) = lanes2(x(i, j), y(i, j));
+        return r;
+    };
+    detail::particle_pair pair;
+    pair.F = pack(a.template get<fields::deformation_gradient>(), b.template get<fields::deformation_gradient>());
+    pair.stress = pack(a.template get<fields::stress>(), b.template get<fields::stress>());
+    pair.stress_zz = lanes2(a.template get<fields::stress_zz>(), b.template get<fields::stress_zz>());
+    pair.energy = lanes2(a.template get<fields::specific_internal_energy>(), b.template get<fields::specific_internal_energy>());
+    pair.mass = lanes2(a.template get<fields::mass>(), b.template get<fields::mass>());
+    pair.volume0 = lanes2(a.template get<fields::volume0>(), b.template get<fields::volume0>());
+    update_material_point(mat, pair, pack(La, Lb), lanes2(dt), lanes2(cell), step, time);
+    if (pair.rejected) return false;
+    auto unpack = [](const matrix2& r, auto& x, auto& y) {
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) x(i, j) = r(i, j)[0], y(i, j) = r(i, j)[1];
+    };
+    unpack(pair.F, a.template get<fields::deformation_gradient>(), b.template get<fields::deformation_gradient>());
+    unpack(pair.stress, a.template get<fields::stress>(), b.template get<fields::stress>());
+    a.template get<fields::stress_zz>() = pair.stress_zz[0];
+    b.template get<fields::stress_zz>() = pair.stress_zz[1];
+    a.template get<fields::specific_internal_energy>() = pair.energy[0];
+    b.template get<fields::specific_internal_energy>() = pair.energy[1];
+    return true;
+}
+#endif
 
 }  // namespace gimlet

@@ -21,21 +21,29 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_material_points(real dt, con
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     std::ptrdiff_t failed = n;
     std::exception_ptr error;
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-        try {
-            update_material_point(static_cast<std::size_t>(k), dt, vg);
-        } catch (...) {
-            GIMLET_OMP(critical(gimlet_material_error))
-            if (k < failed) failed = k, error = std::current_exception();
+    // Two particles at a time where the material allows it (update_material_pair).
+    const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) num_threads(threads()) if (n >= parallel_threshold))
+    for (std::ptrdiff_t g = 0; g < groups; ++g) {
+        const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
+        if (last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg)) continue;
+        for (std::ptrdiff_t k = first; k < last; ++k) {
+            try {
+                update_material_point(static_cast<std::size_t>(k), dt, vg);
+            } catch (...) {
+                GIMLET_OMP(critical(gimlet_material_error))
+                if (k < failed) failed = k, error = std::current_exception();
+            }
         }
     }
     if (error) std::rethrow_exception(error);
 }
 
+// The velocity gradient L_p = sum_i v_i (x) G_ip of particle i from the grid velocities vg
+// (a light particle's from its reliable nodes), with volumetric averaging the cell's mean
+// volumetric rate.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
-    auto p = particles_[i];
+auto solver<S, Sh, M, C, ExtraFields, Part>::velocity_gradient(std::size_t i, const std::vector<vector>& vg) const -> matrix {
     matrix L = matrix::Zero();
     if (is_light(i)) {
         L = light_velocity_gradient(i, vg);
@@ -47,7 +55,31 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i
         const std::size_t c = cell_key(i);
         L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
     }
+    return L;
+}
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
+    auto p = particles_[i];
+    const matrix L = velocity_gradient(i, vg);
     gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
+}
+
+// Particles i and i + 1 updated at once, in the two lanes of one vector (lanes_capable
+// materials; gimlet::update_material_points_2): the same bits as one at a time. False, with
+// nothing written, for two bodies or where either particle would stop the run: the caller
+// then updates them one at a time, which names the particle.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+bool solver<S, Sh, M, C, ExtraFields, Part>::update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg) {
+    if constexpr (material_group == 2) {
+        const auto& body = particles_.template column<fields::body>();
+        if (body[i] != body[i + 1]) return false;
+        const matrix La = velocity_gradient(i, vg), Lb = velocity_gradient(i + 1, vg);
+        return gimlet::update_material_points_2(materials_[body[i]], particles_[i], particles_[i + 1], La, Lb, dt, grid_.cell(),
+                                                steps_, double(time_));
+    } else {
+        return (void)i, (void)dt, (void)vg, false;
+    }
 }
 
 // ---- volumetric averaging (solver_options::volumetric_average) ------------------------
@@ -127,20 +159,27 @@ void solver<S, Sh, M, C, ExtraFields, Part>::finish_step(real dt, bool update_ma
     auto& x = particles_.template column<fields::position>();
     std::ptrdiff_t failed = n, first_bad = n;
     std::exception_ptr error;
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        if (update_materials) {
-            try {
-                update_material_point(i, dt, grid_.velocity);
-            } catch (...) {
-                GIMLET_OMP(critical(gimlet_material_error))
-                if (k < failed) failed = k, error = std::current_exception();
-                continue;
+    // Two particles at a time where the material allows it (update_material_pair).
+    const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+    for (std::ptrdiff_t g = 0; g < groups; ++g) {
+        const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
+        const bool paired =
+            update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, grid_.velocity);
+        for (std::ptrdiff_t k = first; k < last; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            if (update_materials && !paired) {
+                try {
+                    update_material_point(i, dt, grid_.velocity);
+                } catch (...) {
+                    GIMLET_OMP(critical(gimlet_material_error))
+                    if (k < failed) failed = k, error = std::current_exception();
+                    continue;
+                }
             }
+            grid_.wrap(x[i]);
+            if (!healthy(i)) first_bad = std::min(first_bad, k);
         }
-        grid_.wrap(x[i]);
-        if (!healthy(i)) first_bad = std::min(first_bad, k);
     }
     if (error) std::rethrow_exception(error);
     ++steps_;

@@ -531,6 +531,11 @@ private:
     // averaging, the step's last pass, sorting
     void update_material_points(real dt, const std::vector<vector>& vg);
     void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg);
+    [[nodiscard]] matrix velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
+    // How many particles the material passes update at once: two in the lanes of one vector
+    // where the material allows it (lanes_capable, update_material_pair), else one.
+    static constexpr std::ptrdiff_t material_group = lanes_capable<M, S> ? 2 : 1;
+    [[nodiscard]] bool update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg);
     [[nodiscard]] std::size_t cell_key(std::size_t i) const;
     [[nodiscard]] matrix force_stress(std::size_t i) const;
     void average_mean_stress();

@@ -3,6 +3,7 @@
 /// \file
 /// Tensor helpers shared by hypoelastic strength laws.
 
+#include "gimlet/core/lanes.hpp"
 #include "gimlet/core/material_point.hpp"
 
 #include <cassert>
@@ -27,7 +28,8 @@ template <class Real>
     // (I - A)^-1 (I + A) = I + 2 (A + A^2) / (1 + |a|^2) (Rodrigues' form of the Cayley map),
     // which avoids a 3x3 inverse per particle and step.
     // Precondition of the plane-strain path: W spins about z only (checked in debug builds).
-    assert(!st.plane_strain || (st.W(0, 2) == 0 && st.W(1, 2) == 0 && st.W(2, 0) == 0 && st.W(2, 1) == 0));
+    assert(!st.plane_strain || all_lanes(st.W(0, 2) == Real(0) && st.W(1, 2) == Real(0) && st.W(2, 0) == Real(0) &&
+                                           st.W(2, 1) == Real(0)));
     if (st.plane_strain) {
         // The same map with a about z only: Q = [[c, -r, 0], [r, c, 0], [0, 0, 1]],
         // c = 1 - 2 w^2 / (1 + w^2), r = 2 w / (1 + w^2), w = dt W_yx / 2. It rotates the

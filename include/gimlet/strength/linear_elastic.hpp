@@ -19,6 +19,9 @@ namespace gimlet::strength {
 class linear_elastic {
 public:
     using required_fields = field_list<>;
+    /// Its templates compute lane by lane for a lane type (gimlet::lane_safe): no branch on a
+    /// value, nothing read through the handle.
+    static constexpr bool lane_safe = true;
 
     /// \param shear_modulus G in Pa, finite and > 0.
     explicit linear_elastic(double shear_modulus) : g_(shear_modulus) {

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Two particles in the lanes of one vector. `lanes2` is a pair of doubles that behaves as one
+/// number under + - * / and negation, each operation taken lane by lane, so that a policy
+/// written as a template on its scalar (`template <class Real, class P> ... update(const
+/// point_step<Real>&, ...)`) computes two particles at once when Real is lanes2, with the same
+/// IEEE operations, in the same order, as for each particle alone: the same bits. The solver
+/// takes this path for the material update where every policy of the material says it is safe
+/// (`lane_safe`, below; docs/concepts.md, "Two particles at once"). It uses the vector
+/// extension of GCC and clang (SSE2 in a portable x86-64 build): no header, no library.
+///
+/// What lanes2 does not have is a comparison that yields one bool: a branch on a value would
+/// have to take one side for both particles. Comparisons give a `lanes2_mask`, which converts
+/// to bool only through all() and any().
+
+#include <Eigen/Core>
+
+namespace gimlet {
+
+#if defined(__GNUC__) || defined(__clang__)
+#define GIMLET_HAS_LANES 1
+
+/// Per lane, whether a comparison holds.
+struct lanes2_mask {
+    using bits = long long __attribute__((vector_size(16)));
+    bits m;
+    [[nodiscard]] bool all() const noexcept { return m[0] != 0 && m[1] != 0; }
+    [[nodiscard]] bool any() const noexcept { return m[0] != 0 || m[1] != 0; }
+    friend lanes2_mask operator&&(lanes2_mask a, lanes2_mask b) noexcept { return {a.m & b.m}; }
+};
+
+/// Two doubles computed lane by lane (see the file's comment).
+struct lanes2 {
+    using vec = double __attribute__((vector_size(16)));
+    vec v;
+
+    lanes2() = default;
+    /// The same value in both lanes (what `Real(0.5)` or `real q = 0` means for a lane type).
+    constexpr lanes2(double a) noexcept : v{a, a} {}  // NOLINT: implicit, as a double literal converts
+    constexpr lanes2(double a, double b) noexcept : v{a, b} {}
+    [[nodiscard]] static lanes2 of(vec x) noexcept {
+        lanes2 r;
+        r.v = x;
+        return r;
+    }
+    [[nodiscard]] double operator[](int lane) const noexcept { return v[lane]; }
+
+    friend lanes2 operator+(lanes2 a, lanes2 b) noexcept { return of(a.v + b.v); }
+    friend lanes2 operator-(lanes2 a, lanes2 b) noexcept { return of(a.v - b.v); }
+    friend lanes2 operator*(lanes2 a, lanes2 b) noexcept { return of(a.v * b.v); }
+    friend lanes2 operator/(lanes2 a, lanes2 b) noexcept { return of(a.v / b.v); }
+    friend lanes2 operator-(lanes2 a) noexcept { return of(-a.v); }
+    friend lanes2 operator+(lanes2 a) noexcept { return a; }
+    lanes2& operator+=(lanes2 b) noexcept { return v = v + b.v, *this; }
+    lanes2& operator-=(lanes2 b) noexcept { return v = v - b.v, *this; }
+    lanes2& operator*=(lanes2 b) noexcept { return v = v * b.v, *this; }
+    lanes2& operator/=(lanes2 b) noexcept { return v = v / b.v, *this; }
+
+    friend lanes2_mask operator>(lanes2 a, lanes2 b) noexcept { return {a.v > b.v}; }
+    friend lanes2_mask operator<(lanes2 a, lanes2 b) noexcept { return {a.v < b.v}; }
+    friend lanes2_mask operator>=(lanes2 a, lanes2 b) noexcept { return {a.v >= b.v}; }
+    friend lanes2_mask operator<=(lanes2 a, lanes2 b) noexcept { return {a.v <= b.v}; }
+    friend lanes2_mask operator==(lanes2 a, lanes2 b) noexcept { return {a.v == b.v}; }
+};
+
+/// Per lane, whether x is finite (x - x is +0 exactly for a finite x, NaN for an infinity or a
+/// NaN).
+[[nodiscard]] inline lanes2_mask finite_lanes(lanes2 x) noexcept { return x - x == lanes2(0.0); }
+
+/// Whether a scalar type is a lane type (the material update's checks are written for both).
+template <class Real>
+inline constexpr bool is_lanes = false;
+template <>
+inline constexpr bool is_lanes<lanes2> = true;
+
+#else
+#define GIMLET_HAS_LANES 0
+template <class Real>
+inline constexpr bool is_lanes = false;
+#endif
+
+/// Whether a condition holds: a bool as it is; a lane mask in every lane (for the assertions
+/// of code written for both).
+[[nodiscard]] constexpr bool all_lanes(bool b) noexcept { return b; }
+#if GIMLET_HAS_LANES
+[[nodiscard]] inline bool all_lanes(lanes2_mask m) noexcept { return m.all(); }
+#endif
+
+/// A constitutive policy whose templates on Real compute lane by lane when Real is a lane type
+/// (no branch, comparison or library call on a Real value, nothing read or written through
+/// the particle handle), and that says so: `static constexpr bool lane_safe = true;`
+/// (docs/concepts.md, "Two particles at once").
+template <class Policy>
+concept lane_safe = requires {
+    requires bool(Policy::lane_safe);
+};
+
+}  // namespace gimlet
+
+#if GIMLET_HAS_LANES
+namespace Eigen {
+/// lanes2 as an Eigen scalar: no packets of its own (each lanes2 is already one), no
+/// initialisation required.
+template <>
+struct NumTraits<gimlet::lanes2> : GenericNumTraits<double> {
+    using Real = gimlet::lanes2;
+    using NonInteger = gimlet::lanes2;
+    using Literal = gimlet::lanes2;
+    using Nested = gimlet::lanes2;
+    enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 0, ReadCost = 1, AddCost = 1, MulCost = 1 };
+};
+}  // namespace Eigen
+#endif
