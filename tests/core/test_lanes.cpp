@@ -67,7 +67,7 @@ struct linear_elastic_alone : gimlet::strength::linear_elastic {
 };
 
 using user_material = gimlet::material<stiffening_elastic, gimlet::eos::linear>;
-using user_material_alone = gimlet::material<stiffening_elastic_alone, gimlet::eos::linear>;
+using user_material_alone = gimlet::material<stiffening_elastic_alone, gimlet::eos::linear>;  // a type, not a solver
 using elastic_alone = gimlet::material<linear_elastic_alone, gimlet::eos::linear>;
 
 static_assert(gimlet::lanes_capable<gimlet::elastic_material, S>);
@@ -263,19 +263,14 @@ void check_solver_pairs(const Paired& m_paired, const Paired& soft_paired, const
 }  // namespace
 
 TEST_CASE("two particles at once: a solver that pairs its particles runs to the same bits", "[core][lanes]") {
+    // linear_elastic against itself without lane_safe (the solver types are what the test costs
+    // to compile: a user's law goes through the same solver code, and its pairs are checked
+    // against its singles above).
+    const auto mat = gimlet::make_elastic_material(1800.0, 20e9, 0.3), soft = gimlet::make_elastic_material(1500.0, 8e9, 0.35);
     auto alone = [](const gimlet::elastic_material& m) {
         return elastic_alone{m.density, linear_elastic_alone{m.strength.shear_modulus()}, m.eos};
     };
-    SECTION("linear_elastic") {
-        const auto mat = gimlet::make_elastic_material(1800.0, 20e9, 0.3), soft = gimlet::make_elastic_material(1500.0, 8e9, 0.35);
-        check_solver_pairs(mat, soft, alone(mat), alone(soft));
-    }
-    SECTION("a user's lane_safe strength law") {
-        check_solver_pairs(user_material{1800.0, stiffening_elastic{7e9}, gimlet::eos::linear{12e9}},
-                           user_material{1500.0, stiffening_elastic{3e9}, gimlet::eos::linear{6e9}},
-                           user_material_alone{1800.0, stiffening_elastic_alone{{7e9}}, gimlet::eos::linear{12e9}},
-                           user_material_alone{1500.0, stiffening_elastic_alone{{3e9}}, gimlet::eos::linear{6e9}});
-    }
+    check_solver_pairs(mat, soft, alone(mat), alone(soft));
 }
 
 TEST_CASE("two particles at once: an inverted particle is named as one at a time names it", "[core][lanes]") {
