@@ -7,12 +7,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #if GIMLET_HAS_LANES
 
@@ -172,6 +174,22 @@ TEST_CASE("two particles at once: each particle's own material update, bit for b
     }
 }
 
+// An EOS whose pressure is infinite at J = 1 exactly (lane_safe: no branch), to reach the
+// update's check of a non-finite pressure.
+struct singular_at_rest {
+    using required_fields = gimlet::field_list<>;
+    static constexpr bool lane_safe = true;
+    template <class Real, class P>
+    Real pressure(const gimlet::point_step<Real>& st, const P& /*p*/) const {
+        return Real(1e9) / (st.J - Real(1));
+    }
+    template <class Real, class P>
+    Real bulk_modulus(const gimlet::point_state<Real>& st, const P& /*p*/) const {
+        return Real(1e9) * st.J;
+    }
+};
+static_assert(gimlet::eos::Eos<singular_at_rest>);
+
 TEST_CASE("two particles at once: a pair that would stop the run writes nothing", "[core][lanes]") {
     const auto mat = gimlet::make_elastic_material(1800.0, 20e9, 0.3);
     std::mt19937_64 rng(7);
@@ -196,21 +214,42 @@ TEST_CASE("two particles at once: a pair that would stop the run writes nothing"
                               Catch::Contains("particle " + std::to_string(b) + " ") && Catch::Contains(message));
         }
     }
+    SECTION("a non-finite pressure in either lane") {
+        const gimlet::material<gimlet::strength::linear_elastic, singular_at_rest> singular{
+            1800.0, gimlet::strength::linear_elastic{7e9}, singular_at_rest{}};
+        for (const bool second : {false, true}) {
+            store_type st = start;
+            const std::size_t b = second ? 1 : 0;
+            st.column<gimlet::fields::deformation_gradient>()[b] = S::matrix::Identity();  // J = 1 after a step at rest
+            const store_type before = st;
+            const S::matrix at_rest = S::matrix::Zero();
+            const S::matrix& La = second ? calm : at_rest;
+            const S::matrix& Lb = second ? at_rest : calm;
+            CHECK_FALSE(gimlet::update_material_points_2(singular, st[0], st[1], La, Lb, dt, 5e-4, 3, 0.0));
+            CHECK(same_state(st, before, 0));
+            CHECK(same_state(st, before, 1));
+            CHECK_THROWS_WITH(gimlet::update_material_point(singular, st[b], at_rest, dt, 5e-4, 3, 0.0),
+                              Catch::Contains("particle " + std::to_string(b) + " ") && Catch::Contains("non-finite pressure"));
+        }
+    }
 }
 
 namespace {
 
 // Two blocks of different materials colliding (an odd number of particles, so that a pair
 // straddles the bodies: it has to take each particle's own material).
+// large: 7,267 particles (3,363 and 3,904), above the solver's threshold for running its particle
+// loops on the threads (4096); otherwise 465 (225 and 240), below it.
 template <class M>
-gimlet::scene::scene<S, M> colliding_blocks(const M& mat, const M& softer) {
+gimlet::scene::scene<S, M> colliding_blocks(const M& mat, const M& softer, bool large = false) {
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector(0.0, 0.0);
     gs.upper = S::vector(1.0, 0.6);
-    gs.cell = 0.05;
+    gs.cell = large ? 0.0125 : 0.05;
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::periodic};
     gimlet::scene::scene<S, M> sc(gs);
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.13, 0.1), S::vector(0.495, 0.475)), mat, S::vector(60.0, 5.0), 2, "left");
+    const S::vector left_upper = large ? S::vector(0.49, 0.47) : S::vector(0.495, 0.475);
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.13, 0.1), left_upper), mat, S::vector(60.0, 5.0), 2, "left");
     sc.add_body(gimlet::scene::box<S>(S::vector(0.5, 0.12), S::vector(0.9, 0.5)), softer, S::vector(-40.0, 0.0), 2, "right");
     return sc;
 }
@@ -220,43 +259,51 @@ void check_solver_pairs(const Paired& m_paired, const Paired& soft_paired, const
     using solver_paired = gimlet::solver<S, gimlet::shape::ugimp, Paired>;
     using solver_alone = gimlet::solver<S, gimlet::shape::ugimp, Alone>;
     static_assert(gimlet::lanes_capable<Paired, S> && !gimlet::lanes_capable<Alone, S>);
-    for (const auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usf, gimlet::update_scheme::usl}) {
-        for (const bool averaged : {false, true}) {
-            for (const int threads : {1, 2, 3}) {
-                gimlet::solver_options<S> o;
-                o.scheme = scheme;
-                o.volumetric_average = averaged;
-                o.threads = threads;
-                o.cfl = 0.4;
-                solver_paired a(colliding_blocks(m_paired, soft_paired), o);
-                solver_alone b(colliding_blocks(m_alone, soft_alone), o);
-                // 225 and 240 particles: the pair (224, 225) straddles the bodies, 464 is alone.
-                const auto& body = a.particles().template column<gimlet::fields::body>();
-                REQUIRE(body.size() == 465);
-                REQUIRE(body[224] == 0);
-                REQUIRE(body[225] == 1);
-                for (int k = 0; k < 40; ++k) b.step(a.step());
-                using namespace gimlet::fields;
-                const auto& pa = a.particles();
-                const auto& pb = b.particles();
-                std::size_t differing = 0;
-                for (std::size_t i = 0; i < pa.size(); ++i) {
-                    differing += !same_bits(pa.template column<deformation_gradient>()[i], pb.template column<deformation_gradient>()[i]) ||
-                                 !same_bits(pa.template column<stress>()[i], pb.template column<stress>()[i]) ||
-                                 !same_bits(pa.template column<stress_zz>()[i], pb.template column<stress_zz>()[i]) ||
-                                 !same_bits(pa.template column<specific_internal_energy>()[i], pb.template column<specific_internal_energy>()[i]) ||
-                                 !same_bits(pa.template column<position>()[i](0), pb.template column<position>()[i](0)) ||
-                                 !same_bits(pa.template column<velocity>()[i](1), pb.template column<velocity>()[i](1));
-                }
-                INFO("scheme " << int(scheme) << ", averaged " << averaged << ", threads " << threads);
-                CHECK(differing == 0);
-                // The blocks have met: the update saw stresses (a run that stayed unstressed would
-                // compare zeros).
-                double largest = 0;
-                for (std::size_t i = 0; i < pa.size(); ++i) largest = std::max(largest, pa.template column<stress>()[i].norm());
-                CHECK(largest > 1e6);
-            }
+    // Every scheme, with and without volumetric averaging, on one thread; then the large scene
+    // on 2 and 3 threads, where the material passes hand out their groups on the threads.
+    struct run_case {
+        gimlet::update_scheme scheme;
+        bool averaged, large;
+        int threads;
+    };
+    std::vector<run_case> cases;
+    for (const auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usf, gimlet::update_scheme::usl})
+        for (const bool averaged : {false, true}) cases.push_back({scheme, averaged, false, 1});
+    for (const auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usf})
+        for (const int threads : {2, 3}) cases.push_back({scheme, true, true, threads});
+    for (const auto& [scheme, averaged, large, threads] : cases) {
+        gimlet::solver_options<S> o;
+        o.scheme = scheme;
+        o.volumetric_average = averaged;
+        o.threads = threads;
+        o.cfl = 0.4;
+        solver_paired a(colliding_blocks(m_paired, soft_paired, large), o);
+        solver_alone b(colliding_blocks(m_alone, soft_alone, large), o);
+        // An odd first body, so that a pair straddles the bodies, and an odd last particle.
+        const auto& body = a.particles().template column<gimlet::fields::body>();
+        const auto first_body = std::size_t(std::count(body.begin(), body.end(), 0));
+        REQUIRE(body.size() == (large ? 7267u : 465u));
+        REQUIRE(first_body % 2 == 1);
+        for (int k = 0; k < (large ? 20 : 40); ++k) b.step(a.step());
+        using namespace gimlet::fields;
+        const auto& pa = a.particles();
+        const auto& pb = b.particles();
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < pa.size(); ++i) {
+            differing += !same_bits(pa.template column<deformation_gradient>()[i], pb.template column<deformation_gradient>()[i]) ||
+                         !same_bits(pa.template column<stress>()[i], pb.template column<stress>()[i]) ||
+                         !same_bits(pa.template column<stress_zz>()[i], pb.template column<stress_zz>()[i]) ||
+                         !same_bits(pa.template column<specific_internal_energy>()[i], pb.template column<specific_internal_energy>()[i]) ||
+                         !same_bits(pa.template column<position>()[i](0), pb.template column<position>()[i](0)) ||
+                         !same_bits(pa.template column<velocity>()[i](1), pb.template column<velocity>()[i](1));
         }
+        INFO("scheme " << int(scheme) << ", averaged " << averaged << ", " << body.size() << " particles, threads " << threads);
+        CHECK(differing == 0);
+        // The blocks have met: the update saw stresses (a run that stayed unstressed would
+        // compare zeros).
+        double largest = 0;
+        for (std::size_t i = 0; i < pa.size(); ++i) largest = std::max(largest, pa.template column<stress>()[i].norm());
+        CHECK(largest > 1e6);
     }
 }
 
@@ -285,10 +332,16 @@ TEST_CASE("two particles at once: an inverted particle is named as one at a time
         }
         return std::string("no error");
     };
-    const std::string paired = message(gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>(colliding_blocks(mat, mat)));
-    const std::string one = message(gimlet::solver<S, gimlet::shape::ugimp, elastic_alone>(colliding_blocks(alone, alone)));
-    CHECK_THAT(paired, Catch::Contains("inverted particle"));
-    CHECK(paired == one);
+    for (const auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usf}) {  // finish_step, update_material_points
+        gimlet::solver_options<S> o;
+        o.scheme = scheme;
+        const std::string paired =
+            message(gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>(colliding_blocks(mat, mat), o));
+        const std::string one = message(gimlet::solver<S, gimlet::shape::ugimp, elastic_alone>(colliding_blocks(alone, alone), o));
+        INFO("scheme " << int(scheme));
+        CHECK_THAT(paired, Catch::Contains("inverted particle"));
+        CHECK(paired == one);
+    }
 }
 
 #endif

@@ -8,7 +8,7 @@
 /// IEEE operations, in the same order, as for each particle alone: the same bits. The solver
 /// takes this path for the material update where every policy of the material says it is safe
 /// (`lane_safe`, below; docs/concepts.md, "Two particles at once"). It uses the vector
-/// extension of GCC and clang (SSE2 in a portable x86-64 build): no header, no library.
+/// extension of GCC and clang, on x86-64 without FMA only (below): no header, no library.
 ///
 /// What lanes2 does not have is a comparison that yields one bool: a branch on a value would
 /// have to take one side for both particles. Comparisons give a `lanes2_mask`, which converts
@@ -16,14 +16,28 @@
 
 #include <Eigen/Core>
 
+#include <limits>
+
+// Only where both paths round alike: x86-64 (SSE2 arithmetic on doubles, no x87 excess
+// precision) without FMA. Where the compiler may fuse a multiply and an add (-mfma, a
+// -march=native build on a recent x86, every arm64 target), it can fuse a * b - c * d in the
+// one-particle code but not across lanes2's separate operations, so a pair would differ from
+// its particles in the last bits: the solver then updates one particle at a time.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && defined(__SSE2__) && !defined(__FMA__)
+#define GIMLET_HAS_LANES 1
+#else
+#define GIMLET_HAS_LANES 0
+#endif
+
 namespace gimlet {
 
-#if defined(__GNUC__) || defined(__clang__)
-#define GIMLET_HAS_LANES 1
+#if GIMLET_HAS_LANES
+
+using lanes2_vec = double __attribute__((vector_size(16)));
 
 /// Per lane, whether a comparison holds.
 struct lanes2_mask {
-    using bits = long long __attribute__((vector_size(16)));
+    using bits = decltype(lanes2_vec{} > lanes2_vec{});  // what the extension's comparison gives
     bits m;
     [[nodiscard]] bool all() const noexcept { return m[0] != 0 && m[1] != 0; }
     [[nodiscard]] bool any() const noexcept { return m[0] != 0 || m[1] != 0; }
@@ -32,7 +46,7 @@ struct lanes2_mask {
 
 /// Two doubles computed lane by lane (see the file's comment).
 struct lanes2 {
-    using vec = double __attribute__((vector_size(16)));
+    using vec = lanes2_vec;
     vec v;
 
     lanes2() = default;
@@ -75,7 +89,6 @@ template <>
 inline constexpr bool is_lanes<lanes2> = true;
 
 #else
-#define GIMLET_HAS_LANES 0
 template <class Real>
 inline constexpr bool is_lanes = false;
 #endif
@@ -87,10 +100,12 @@ inline constexpr bool is_lanes = false;
 [[nodiscard]] inline bool all_lanes(lanes2_mask m) noexcept { return m.all(); }
 #endif
 
-/// A constitutive policy whose templates on Real compute lane by lane when Real is a lane type
-/// (no branch, comparison or library call on a Real value, nothing read or written through
-/// the particle handle), and that says so: `static constexpr bool lane_safe = true;`
-/// (docs/concepts.md, "Two particles at once").
+/// A constitutive policy whose templates on Real compute lane by lane when Real is a lane type,
+/// with the operations it would take on each double in the same order, and that says so:
+/// `static constexpr bool lane_safe = true;`. The promise (docs/concepts.md, "Two particles at
+/// once"): no branch, comparison or library call on a Real value; no Eigen reduction over
+/// three or more stored entries (sum, squaredNorm, dot: Eigen orders them differently for
+/// double); no long double; nothing read or written through the particle handle.
 template <class Policy>
 concept lane_safe = requires {
     requires bool(Policy::lane_safe);
@@ -111,4 +126,19 @@ struct NumTraits<gimlet::lanes2> : GenericNumTraits<double> {
     enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 0, ReadCost = 1, AddCost = 1, MulCost = 1 };
 };
 }  // namespace Eigen
+
+/// std::numeric_limits of a lane type: those of double, in both lanes (without it,
+/// numeric_limits<lanes2>::epsilon() would be a value-initialised lanes2: zero).
+template <>
+struct std::numeric_limits<gimlet::lanes2> : std::numeric_limits<double> {
+    static constexpr gimlet::lanes2 min() noexcept { return std::numeric_limits<double>::min(); }
+    static constexpr gimlet::lanes2 max() noexcept { return std::numeric_limits<double>::max(); }
+    static constexpr gimlet::lanes2 lowest() noexcept { return std::numeric_limits<double>::lowest(); }
+    static constexpr gimlet::lanes2 epsilon() noexcept { return std::numeric_limits<double>::epsilon(); }
+    static constexpr gimlet::lanes2 round_error() noexcept { return std::numeric_limits<double>::round_error(); }
+    static constexpr gimlet::lanes2 infinity() noexcept { return std::numeric_limits<double>::infinity(); }
+    static constexpr gimlet::lanes2 quiet_NaN() noexcept { return std::numeric_limits<double>::quiet_NaN(); }
+    static constexpr gimlet::lanes2 signaling_NaN() noexcept { return std::numeric_limits<double>::signaling_NaN(); }
+    static constexpr gimlet::lanes2 denorm_min() noexcept { return std::numeric_limits<double>::denorm_min(); }
+};
 #endif

@@ -245,7 +245,8 @@ struct lane_space2 {
 struct particle_pair {
     using space_type = lane_space2;
     mutable lane_space2::matrix F, stress;
-    mutable lanes2 stress_zz, energy, mass, volume0;
+    mutable lanes2 stress_zz, energy;
+    lanes2 mass, volume0;  // read only: the update writes neither, and neither is stored back
     mutable bool rejected = false;
     void reject() const noexcept { rejected = true; }
     template <class Field>

@@ -71,15 +71,22 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i
 // then updates them one at a time, which names the particle.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 bool solver<S, Sh, M, C, ExtraFields, Part>::update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg) {
+#if GIMLET_HAS_LANES
     if constexpr (material_group == 2) {
         const auto& body = particles_.template column<fields::body>();
         if (body[i] != body[i + 1]) return false;
-        const matrix La = velocity_gradient(i, vg), Lb = velocity_gradient(i + 1, vg);
-        return gimlet::update_material_points_2(materials_[body[i]], particles_[i], particles_[i + 1], La, Lb, dt, grid_.cell(),
-                                                steps_, double(time_));
-    } else {
-        return (void)i, (void)dt, (void)vg, false;
+        // Whatever a policy throws for the pair is thrown again, for its particle, by the
+        // one-at-a-time update (an exception must not leave an OpenMP loop).
+        try {
+            const matrix La = velocity_gradient(i, vg), Lb = velocity_gradient(i + 1, vg);
+            return gimlet::update_material_points_2(materials_[body[i]], particles_[i], particles_[i + 1], La, Lb, dt,
+                                                    grid_.cell(), steps_, double(time_));
+        } catch (...) {
+            return false;
+        }
     }
+#endif
+    return (void)i, (void)dt, (void)vg, false;
 }
 
 // ---- volumetric averaging (solver_options::volumetric_average) ------------------------
