@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 // What two particles in the lanes of one vector would give the material update of the reference
-// scene (linear elastic strength, linear EOS, no heat, no viscosity; plane strain), timed three
+// scene (linear elastic strength, linear EOS, no heat, no viscosity; plane strain), timed four
 // ways over the scene's particles (after 50 steps and five library updates with random velocity
 // gradients, so that every particle is stressed and rotated), each from the same state and
 // velocity gradients:
-//   library     gimlet::update_material_point, one particle at a time (what the solver runs);
+//   library     gimlet::update_material_point, one particle at a time (what the solver runs
+//               where a material cannot take two at once);
+//   pairs       gimlet::update_material_points_2, the library's two particles at once (what the
+//               solver runs for this material where the build has lanes: GIMLET_HAS_LANES);
 //   one lane    the same arithmetic written out for plane strain, one particle at a time (no
 //               3 x 3 tensors: what a plane-strain path of the policies would do);
 //   two lanes   the same, two particles in the lanes of one vector (GCC's and clang's vector
 //               extension: SSE2 in a portable build).
-// Every operation keeps the library's operands and order, so the three agree bit for bit; the
+// Every operation keeps the library's operands and order, so all four agree bit for bit; the
 // program checks it and exits 1 if not (it mirrors update.hpp, linear_elastic, jaumann_rotate's
 // plane-strain form and eos::linear: a change there shows here). It leaves out the checks of
 // det F and their messages. Prints a Markdown table; --repeats R (20), --cell MM (0.5).
@@ -20,6 +23,7 @@
 #include <cstring>
 #include <exception>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 namespace {
@@ -192,16 +196,33 @@ int main(int argc, char** argv) try {
     auto library = [&] {
         for (std::size_t i = 0; i < n; ++i) gimlet::update_material_point(material, ps[i], L[i], dt, cell, 50, 0.0);
     };
+    // The library's own pair path (gimlet::update_material_points_2), where this build has it.
+    auto library_pairs = [&] {
+#if GIMLET_HAS_LANES
+        for (std::size_t i = 0; i < n; i += 2)
+            if (!gimlet::update_material_points_2(material, ps[i], ps[i + 1], L[i], L[i + 1], dt, cell, 50, 0.0))
+                throw std::runtime_error("a pair was rejected");
+#endif
+    };
     auto seconds = [](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();
         f();
         return bench::seconds_since(t0);
     };
-    std::vector<double> t_library, t_one, t_two;
+    std::vector<double> t_library, t_pairs, t_one, t_two;
+    std::size_t d_pairs = 0;
     state one = start, two = start;
     for (int r = 0; r < repeats; ++r) {  // interleaved, each from the start state
         restore();
+        t_pairs.push_back(seconds(library_pairs));
+        const state pairs{ps.column<fl::deformation_gradient>(), ps.column<fl::stress>(), ps.column<fl::stress_zz>(),
+                          ps.column<fl::specific_internal_energy>()};
+        restore();
         t_library.push_back(seconds(library));
+        if (r == 0) d_pairs = GIMLET_HAS_LANES ? differing(state{ps.column<fl::deformation_gradient>(), ps.column<fl::stress>(),
+                                                                 ps.column<fl::stress_zz>(), ps.column<fl::specific_internal_energy>()},
+                                                           pairs, n)
+                                               : 0;
         one = start;
         t_one.push_back(seconds([&] { update<1>(one, L, mass, volume0, dt, G, K, n); }));
         two = start;
@@ -215,9 +236,12 @@ int main(int argc, char** argv) try {
                 repeats);
     std::printf("| --- | --- | --- | --- |\n");
     std::printf("| library, one particle at a time | %.2f | 1 | |\n", base * ns);
+    if (GIMLET_HAS_LANES)
+        std::printf("| library, two particles at once (update_material_points_2) | %.2f | %.3f | %zu |\n",
+                    bench::median(t_pairs) * ns, bench::median(t_pairs) / base, d_pairs);
     std::printf("| written out, one lane | %.2f | %.3f | %zu |\n", bench::median(t_one) * ns, bench::median(t_one) / base, d_one);
     std::printf("| written out, two lanes | %.2f | %.3f | %zu |\n", bench::median(t_two) * ns, bench::median(t_two) / base, d_two);
-    return d_one + d_two == 0 ? 0 : 1;
+    return d_one + d_two + d_pairs == 0 ? 0 : 1;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_lanes: %s\n", e.what());
     return 1;
