@@ -61,12 +61,12 @@ void update(state& s, const std::vector<mat2>& L, const std::vector<double>& mas
     using L_ = lanes<W>;
     using v = typename L_::v;
     auto splat = [](double a) {
-        v r;
+        v r{};
         for (int l = 0; l < W; ++l) L_::set(r, l, a);
         return r;
     };
     auto load = [](std::size_t i, auto&& get) {
-        v r;
+        v r{};
         for (int l = 0; l < W; ++l) L_::set(r, l, get(i + std::size_t(l)));
         return r;
     };
