@@ -22,11 +22,15 @@
 // precision) without FMA. Where the compiler may fuse a multiply and an add (-mfma, a
 // -march=native build on a recent x86, every arm64 target), it can fuse a * b - c * d in the
 // one-particle code but not across lanes2's separate operations, so a pair would differ from
-// its particles in the last bits: the solver then updates one particle at a time.
+// its particles in the last bits: the solver then updates one particle at a time. A user may
+// define GIMLET_HAS_LANES to 0 to update one particle at a time everywhere (the results are
+// the same bits).
+#ifndef GIMLET_HAS_LANES
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && defined(__SSE2__) && !defined(__FMA__)
 #define GIMLET_HAS_LANES 1
 #else
 #define GIMLET_HAS_LANES 0
+#endif
 #endif
 
 namespace gimlet {
