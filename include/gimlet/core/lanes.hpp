@@ -35,6 +35,10 @@
 
 namespace gimlet {
 
+/// Whether a scalar type is a lane type (the material update's checks are written for both).
+template <class Real>
+inline constexpr bool is_lanes = false;
+
 #if GIMLET_HAS_LANES
 
 using lanes2_vec = double __attribute__((vector_size(16)));
@@ -86,15 +90,8 @@ struct lanes2 {
 /// NaN).
 [[nodiscard]] inline lanes2_mask finite_lanes(lanes2 x) noexcept { return x - x == lanes2(0.0); }
 
-/// Whether a scalar type is a lane type (the material update's checks are written for both).
-template <class Real>
-inline constexpr bool is_lanes = false;
 template <>
 inline constexpr bool is_lanes<lanes2> = true;
-
-#else
-template <class Real>
-inline constexpr bool is_lanes = false;
 #endif
 
 /// Whether a condition holds: a bool as it is; a lane mask in every lane (for the assertions

@@ -18,25 +18,43 @@ namespace gimlet {
 // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::update_material_points(real dt, const std::vector<vector>& vg) {
+    material_pass(dt, vg, true, [](std::size_t) { return true; });
+}
+
+// Every particle's material update from the grid velocities vg (if update_materials), two at a
+// time where the material allows it (update_material_pair), then after(i) for each particle
+// whose update did not throw; after returns false for a broken particle. Returns the
+// lowest-numbered broken particle (n if none); an update's error is thrown for the
+// lowest-numbered particle once every particle is done, before the broken ones are reported
+// (as when the passes were separate).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <class After>
+std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, const std::vector<vector>& vg,
+                                                                     bool update_materials, After&& after) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-    std::ptrdiff_t failed = n;
+    std::ptrdiff_t failed = n, first_bad = n;
     std::exception_ptr error;
-    // Two particles at a time where the material allows it (update_material_pair).
     const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) num_threads(threads()) if (n >= parallel_threshold))
+    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
     for (std::ptrdiff_t g = 0; g < groups; ++g) {
         const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
-        if (last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg)) continue;
+        const bool paired = update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg);
         for (std::ptrdiff_t k = first; k < last; ++k) {
-            try {
-                update_material_point(static_cast<std::size_t>(k), dt, vg);
-            } catch (...) {
-                GIMLET_OMP(critical(gimlet_material_error))
-                if (k < failed) failed = k, error = std::current_exception();
+            const auto i = static_cast<std::size_t>(k);
+            if (update_materials && !paired) {
+                try {
+                    update_material_point(i, dt, vg);
+                } catch (...) {
+                    GIMLET_OMP(critical(gimlet_material_error))
+                    if (k < failed) failed = k, error = std::current_exception();
+                    continue;
+                }
             }
+            if (!after(i)) first_bad = std::min(first_bad, k);
         }
     }
     if (error) std::rethrow_exception(error);
+    return first_bad;
 }
 
 // The velocity gradient L_p = sum_i v_i (x) G_ip of particle i from the grid velocities vg
@@ -162,36 +180,15 @@ void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std:
 // passes were separate.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::finish_step(real dt, bool update_materials) {
-    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     auto& x = particles_.template column<fields::position>();
-    std::ptrdiff_t failed = n, first_bad = n;
-    std::exception_ptr error;
-    // Two particles at a time where the material allows it (update_material_pair).
-    const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
-    for (std::ptrdiff_t g = 0; g < groups; ++g) {
-        const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
-        const bool paired =
-            update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, grid_.velocity);
-        for (std::ptrdiff_t k = first; k < last; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            if (update_materials && !paired) {
-                try {
-                    update_material_point(i, dt, grid_.velocity);
-                } catch (...) {
-                    GIMLET_OMP(critical(gimlet_material_error))
-                    if (k < failed) failed = k, error = std::current_exception();
-                    continue;
-                }
-            }
-            grid_.wrap(x[i]);
-            if (!healthy(i)) first_bad = std::min(first_bad, k);
-        }
-    }
-    if (error) std::rethrow_exception(error);
+    const std::ptrdiff_t first_bad = material_pass(dt, grid_.velocity, update_materials, [&](std::size_t i) {
+        grid_.wrap(x[i]);
+        return healthy(i);
+    });
     ++steps_;
     time_ += dt;
-    if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+    if (first_bad < std::ptrdiff_t(particles_.size()))
+        fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
 }
 
 // ---- sorting ------------------------------------------------------------------------

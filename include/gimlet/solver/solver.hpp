@@ -530,6 +530,8 @@ private:
     // ---- particle passes (solver/particle_passes.hpp): the material update, volumetric
     // averaging, the step's last pass, sorting
     void update_material_points(real dt, const std::vector<vector>& vg);
+    template <class After>
+    std::ptrdiff_t material_pass(real dt, const std::vector<vector>& vg, bool update_materials, After&& after);
     void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg);
     [[nodiscard]] matrix velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
     // How many particles the material passes update at once: two in the lanes of one vector
