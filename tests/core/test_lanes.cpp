@@ -13,10 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
-#include <functional>
 #include <string>
-#include <tuple>
-#include <type_traits>
 #include <vector>
 
 #if GIMLET_HAS_LANES
@@ -34,16 +31,12 @@ bool same_bits(const S::matrix& a, const S::matrix& b) {
     return true;
 }
 
-// Whether particle i of stores a and b holds the same bits in every field the update writes
-// (and in each of the material's own fields, Own).
-template <class Store, class... Own>
-bool same_state(const Store& a, const Store& b, std::size_t i, gimlet::field_list<Own...> = {}) {
+// Whether particle i of stores a and b holds the same bits in every field the update writes.
+bool same_state(const store_type& a, const store_type& b, std::size_t i) {
     using namespace gimlet::fields;
-    return same_bits(a.template column<deformation_gradient>()[i], b.template column<deformation_gradient>()[i]) &&
-           same_bits(a.template column<stress>()[i], b.template column<stress>()[i]) &&
-           same_bits(a.template column<stress_zz>()[i], b.template column<stress_zz>()[i]) &&
-           same_bits(a.template column<specific_internal_energy>()[i], b.template column<specific_internal_energy>()[i]) &&
-           (same_bits(a.template column<Own>()[i], b.template column<Own>()[i]) && ...);
+    return same_bits(a.column<deformation_gradient>()[i], b.column<deformation_gradient>()[i]) &&
+           same_bits(a.column<stress>()[i], b.column<stress>()[i]) && same_bits(a.column<stress_zz>()[i], b.column<stress_zz>()[i]) &&
+           same_bits(a.column<specific_internal_energy>()[i], b.column<specific_internal_energy>()[i]);
 }
 
 // A strength law a user might write from docs/concepts.md ("Two particles at once"): the
@@ -85,19 +78,7 @@ static_assert(!gimlet::lanes_capable<user_material_alone, S>);
 static_assert(!gimlet::lanes_capable<elastic_alone, S>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<3>>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<2, float>>);
-static_assert(gimlet::lanes_capable<gimlet::materials::hmx_material<>, S>);
-// A thermal policy or viscosity that is on and not lane_safe keeps the material one particle at a time.
-struct viscosity_alone : gimlet::viscosity::bulk {
-    static constexpr bool lane_safe = false;
-};
-struct temperature_alone : gimlet::thermal::isentrope_temperature {
-    using isentrope_temperature::isentrope_temperature;
-    static constexpr bool lane_safe = false;
-};
-using ie = std::integral_constant<gimlet::eos::energy_reference, gimlet::eos::energy_reference::internal_energy>;
-static_assert(!gimlet::lanes_capable<gimlet::materials::hmx_material<ie::value, gimlet::thermal::isentrope_temperature, viscosity_alone>, S>);
-static_assert(!gimlet::lanes_capable<gimlet::materials::hmx_material<ie::value, temperature_alone>, S>);
-static_assert(gimlet::lanes_capable<gimlet::materials::hmx_material<ie::value, gimlet::thermal::none, gimlet::viscosity::none>, S>);
+static_assert(!gimlet::lanes_capable<gimlet::materials::hmx_material<>, S>);  // von Mises branches on the yield test
 
 // n particles in random states: stretched, sheared and rotated F (det F from 0.5 to 1.5),
 // stresses of either sign up to 1 GPa, energies, masses and volumes.
@@ -190,168 +171,6 @@ TEST_CASE("two particles at once: each particle's own material update, bit for b
                 CHECK(gimlet::finite_lanes(x).all() == (std::isfinite(a) && std::isfinite(b)));
                 CHECK((x > y).any() == (a > b || b > a));
             }
-    }
-}
-
-namespace {
-
-// The reference paper's HMX, as the flagship runs it (internal-energy Mie-Grueneisen, the
-// isentrope's temperature, bulk viscosity) and in the paper's variant (plastic-work
-// Mie-Grueneisen, Walsh-Christian heating).
-using hmx_standard = gimlet::materials::hmx_material<>;
-using hmx_paper = gimlet::materials::hmx_material<gimlet::eos::energy_reference::plastic_work, gimlet::materials::paper_temperature>;
-template <class M>
-using hmx_store = gimlet::particle_store<S, gimlet::field_union_t<gimlet::core_fields<S>, typename M::required_fields>>;
-
-// n HMX particles in random states the EOS and the temperature accept: J from 0.77 to 1.27,
-// deviatoric stresses up to 2.5 Y0 (about half of them yield), the specific energy 16-100 K
-// above the reference isentrope, plastic strain, plastic work, temperature and compression
-// rate of their own.
-template <class M>
-hmx_store<M> random_hmx_particles(std::size_t n, std::mt19937_64& rng) {
-    const auto isentrope = gimlet::materials::make_hmx().thermal;
-    hmx_store<M> st;
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    using namespace gimlet::fields;
-    for (std::size_t k = 0; k < n; ++k) {
-        auto p = st[st.add()];
-        const double angle = 3.0 * u(rng);
-        S::matrix R;
-        R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-        S::matrix U;
-        U << 1.0 + 0.15 * u(rng), 0.05 * u(rng), 0.0, 1.0 + 0.1 * u(rng);
-        p.template get<deformation_gradient>() = R * U;
-        const double J = U.determinant(), mean = -1e9 * u(rng), yield = 100e6;
-        const double y = (k % 3 == 0 ? 0.3 : 2.5) * yield;  // a third well inside the surface
-        S::matrix sig;
-        sig << mean + y * u(rng), y * u(rng), 0.0, mean + y * u(rng);
-        sig(1, 0) = sig(0, 1);
-        p.template get<stress>() = sig;
-        p.template get<stress_zz>() = mean + y * u(rng);
-        p.template get<specific_internal_energy>() = isentrope.reference_energy(J) + 2e4 + 5e4 * (1.0 + u(rng));
-        p.template get<volume0>() = 1e-8 * (1.5 + u(rng));
-        p.template get<mass>() = 1900.0 * p.template get<volume0>();
-        p.template get<plastic_strain>() = 0.05 * (1.0 + u(rng));
-        p.template get<plastic_work>() = 5e3 * (1.0 + u(rng));
-        p.template get<temperature>() = 450.0 + 150.0 * u(rng);
-        p.template get<compression_rate>() = k % 2 ? 0.0 : 1e5 * (1.0 + u(rng));
-    }
-    return st;
-}
-
-template <class M>
-void check_hmx_pairs_against_singles(const M& mat) {
-    std::mt19937_64 rng(20261127);
-    const std::size_t n = 4000;
-    const hmx_store<M> start = random_hmx_particles<M>(n, rng);
-    std::vector<S::matrix> L(n);
-    for (std::size_t k = 0; k < n; ++k) L[k] = random_gradient(k, rng) * 1e-2;  // dt L up to 1e-3
-    const double dt = 1e-8, cell = 5e-4;
-    hmx_store<M> pairs = start, singles = start;
-    std::size_t differing = 0, rejected = 0;
-    using own = typename M::required_fields;
-    for (std::size_t i = 0; i + 1 < n; i += 2) {
-        if (!gimlet::update_material_points_2(mat, pairs[i], pairs[i + 1], L[i], L[i + 1], dt, cell, 7, 1e-6)) ++rejected;
-        gimlet::update_material_point(mat, singles[i], L[i], dt, cell, 7, 1e-6);
-        gimlet::update_material_point(mat, singles[i + 1], L[i + 1], dt, cell, 7, 1e-6);
-        differing += !same_state(pairs, singles, i, own{}) + !same_state(pairs, singles, i + 1, own{});
-    }
-    CHECK(rejected == 0);
-    CHECK(differing == 0);
-    // The branches the pair takes per particle were all taken, and in mixed pairs: one
-    // particle yields and the other does not, one compresses (the viscosity's branch) and the
-    // other does not.
-    using namespace gimlet::fields;
-    auto yielded = [&](std::size_t i) { return singles.template column<plastic_strain>()[i] != start.template column<plastic_strain>()[i]; };
-    auto compressed = [&](std::size_t i) { return singles.template column<compression_rate>()[i] > 0; };
-    std::size_t moved = 0, mixed_yield = 0, both_yield = 0, mixed_compression = 0;
-    for (std::size_t i = 0; i < n; ++i) moved += !same_state(singles, start, i, own{});
-    for (std::size_t i = 0; i + 1 < n; i += 2) {
-        mixed_yield += yielded(i) != yielded(i + 1);
-        both_yield += yielded(i) && yielded(i + 1);
-        mixed_compression += compressed(i) != compressed(i + 1);
-    }
-    INFO("pairs: " << mixed_yield << " one yields, " << both_yield << " both, " << mixed_compression << " one compresses");
-    CHECK(moved == n);
-    CHECK(mixed_yield > 200);
-    CHECK(both_yield > 200);
-    CHECK(mixed_compression > 200);
-}
-
-}  // namespace
-
-TEST_CASE("two particles at once: the reference paper's HMX, bit for bit", "[core][lanes]") {
-    SECTION("as the flagship runs it") {
-        check_hmx_pairs_against_singles(gimlet::materials::make_hmx());
-    }
-    SECTION("the paper's variant") {
-        check_hmx_pairs_against_singles(
-            gimlet::materials::make_hmx<gimlet::eos::energy_reference::plastic_work, gimlet::materials::paper_temperature>());
-    }
-    SECTION("contract3 is Eigen's sum for double, bit for bit") {
-        std::mt19937_64 rng(11);
-        std::uniform_real_distribution<double> u(-1.0, 1.0);
-        std::size_t differing = 0;
-        for (int k = 0; k < 20000; ++k) {
-            Eigen::Matrix3d a, b;
-            for (int e = 0; e < 9; ++e) a(e) = u(rng) * std::pow(10.0, 6.0 * u(rng)), b(e) = u(rng);
-            differing += !same_bits(gimlet::contract3(a, b), a.cwiseProduct(b).sum()) +
-                         !same_bits(gimlet::contract3(a, a), a.squaredNorm());
-        }
-        CHECK(differing == 0);
-    }
-}
-
-TEST_CASE("two particles at once: an HMX particle that would stop the run leaves the pair unwritten", "[core][lanes]") {
-    const auto mat = gimlet::materials::make_hmx();
-    std::mt19937_64 rng(5);
-    using store = hmx_store<hmx_standard>;
-    using own = hmx_standard::required_fields;
-    const store start = random_hmx_particles<hmx_standard>(2, rng);
-    S::matrix calm = S::matrix::Zero();
-    calm(0, 1) = 1e3;
-    const double dt = 1e-8;
-    // Beyond the Mie-Grueneisen stop (1 - s eta <= 0.05 at J <= 0.635), and 8 K below the
-    // reference isentrope (the temperature's cold tolerance is 0.1 K).
-    auto crushed = [&](store& st, std::size_t b) {
-        st.column<gimlet::fields::deformation_gradient>()[b] = S::matrix(Eigen::Vector2d(0.62, 1.0).asDiagonal());
-        st.column<gimlet::fields::specific_internal_energy>()[b] = mat.thermal.reference_energy(0.62) + 5e4;  // not cold
-    };
-    auto cold = [&](store& st, std::size_t b) {
-        const double J = st.column<gimlet::fields::deformation_gradient>()[b].determinant();
-        st.column<gimlet::fields::specific_internal_energy>()[b] = mat.thermal.reference_energy(J) - 1e4;
-    };
-    for (const auto& [name, spoil, message] :
-         {std::tuple{"crushed", std::function<void(store&, std::size_t)>(crushed), std::string("Mie-Grueneisen limit")},
-          std::tuple{"cold", std::function<void(store&, std::size_t)>(cold), std::string("below the reference isentrope")}}) {
-        for (const std::size_t b : {0u, 1u}) {
-            store st = start;
-            spoil(st, b);
-            const store before = st;
-            INFO(name << " particle " << b);
-            CHECK_FALSE(gimlet::update_material_points_2(mat, st[0], st[1], calm, calm, dt, 5e-4, 3, 0.0));
-            CHECK(same_state(st, before, 0, own{}));
-            CHECK(same_state(st, before, 1, own{}));
-            // One at a time, the other particle is updated and the spoilt one stops with its message.
-            CHECK_NOTHROW(gimlet::update_material_point(mat, st[1 - b], calm, dt, 5e-4, 3, 0.0));
-            CHECK_THROWS_WITH(gimlet::update_material_point(mat, st[b], calm, dt, 5e-4, 3, 0.0),
-                              Catch::Contains("particle " + std::to_string(b) + " ") && Catch::Contains(message));
-        }
-    }
-    SECTION("the isentrope's temperature beyond its singular compression, under an EOS without a stop") {
-        // J = 0.6 < 1 - 1/s: the table has no value there; the pair must not look it up.
-        using linear_hot = gimlet::material<gimlet::strength::von_mises, gimlet::eos::linear, gimlet::thermal::isentrope_temperature>;
-        const linear_hot hot{mat.density, mat.strength, gimlet::eos::linear{14e9}, mat.thermal};
-        for (const std::size_t b : {0u, 1u}) {
-            store st = start;
-            st.column<gimlet::fields::deformation_gradient>()[b] = S::matrix(Eigen::Vector2d(0.6, 1.0).asDiagonal());
-            const store before = st;
-            CHECK_FALSE(gimlet::update_material_points_2(hot, st[0], st[1], calm, calm, dt, 5e-4, 3, 0.0));
-            CHECK(same_state(st, before, 0, own{}));
-            CHECK(same_state(st, before, 1, own{}));
-            CHECK_THROWS_WITH(gimlet::update_material_point(hot, st[b], calm, dt, 5e-4, 3, 0.0),
-                              Catch::Contains("particle " + std::to_string(b) + " ") && Catch::Contains("singular compression"));
-        }
     }
 }
 

@@ -14,12 +14,9 @@
 /// have to take one side for both particles. Comparisons give a `lanes2_mask`, which converts
 /// to bool only through all() and any().
 
-#include "gimlet/core/detail/inline.hpp"
-
 #include <Eigen/Core>
 
 #include <limits>
-#include <type_traits>
 
 // Only where both paths round alike: x86-64 (SSE2 arithmetic on doubles, no x87 excess
 // precision) without FMA. Where the compiler may fuse a multiply and an add (-mfma, a
@@ -34,10 +31,6 @@
 #else
 #define GIMLET_HAS_LANES 0
 #endif
-#endif
-
-#if GIMLET_HAS_LANES
-#include <emmintrin.h>  // _mm_sqrt_pd
 #endif
 
 namespace gimlet {
@@ -57,8 +50,6 @@ struct lanes2_mask {
     [[nodiscard]] bool all() const noexcept { return m[0] != 0 && m[1] != 0; }
     [[nodiscard]] bool any() const noexcept { return m[0] != 0 || m[1] != 0; }
     friend lanes2_mask operator&&(lanes2_mask a, lanes2_mask b) noexcept { return {a.m & b.m}; }
-    friend lanes2_mask operator||(lanes2_mask a, lanes2_mask b) noexcept { return {a.m | b.m}; }
-    friend lanes2_mask operator!(lanes2_mask a) noexcept { return {~a.m}; }
 };
 
 /// Two doubles computed lane by lane (see the file's comment).
@@ -99,70 +90,9 @@ struct lanes2 {
 /// NaN).
 [[nodiscard]] inline lanes2_mask finite_lanes(lanes2 x) noexcept { return x - x == lanes2(0.0); }
 
-/// Per lane, a where the mask holds, else b (the lane form of `c ? a : b`).
-[[nodiscard]] inline lanes2 select(lanes2_mask c, lanes2 a, lanes2 b) noexcept {
-    return lanes2::of(c.m ? a.v : b.v);
-}
-
-/// The square root of each lane (SSE2's sqrtpd, correctly rounded as std::sqrt is).
-[[nodiscard]] inline lanes2 sqrt(lanes2 x) noexcept { return lanes2::of(lanes2_vec(_mm_sqrt_pd(__m128d(x.v)))); }
-
 template <>
 inline constexpr bool is_lanes<lanes2> = true;
 #endif
-
-/// `c ? a : b` for a scalar (the same name as the lane form, for code written for both; both
-/// operands are evaluated).
-template <class Real>
-[[nodiscard]] constexpr Real select(bool c, Real a, Real b) noexcept {
-    return c ? a : b;
-}
-
-/// Lane k of x as a double (a scalar: itself, converted).
-template <class Real>
-[[nodiscard]] constexpr double lane(Real x, int /*k*/) noexcept {
-    return double(x);
-}
-#if GIMLET_HAS_LANES
-[[nodiscard]] inline double lane(lanes2 x, int k) noexcept { return x[k]; }
-#endif
-
-/// The Real whose lane k is f(k), f taking a lane index and returning a double: for a policy
-/// that computes each particle of a pair by its double code (a branch, a library call).
-template <class Real, class F>
-[[nodiscard]] GIMLET_INLINE Real per_lane(F&& f) {
-    if constexpr (is_lanes<Real>) {
-        const double a = f(0);
-        const double b = f(1);
-        return Real(a, b);
-    } else {
-        return Real(f(0));
-    }
-}
-
-/// Whether a condition holds in any lane (a bool: whether it holds).
-[[nodiscard]] constexpr bool any_lane(bool b) noexcept { return b; }
-#if GIMLET_HAS_LANES
-[[nodiscard]] inline bool any_lane(lanes2_mask m) noexcept { return m.any(); }
-#endif
-
-/// a : b of two 3 x 3 tensors, summed in one fixed order whatever the scalar: the order of
-/// Eigen's SSE2 packets for double (entries in storage order, ((p0 + p2) + (p4 + p6)) +
-/// ((p1 + p3) + (p5 + p7)) + p8), which a.cwiseProduct(b).sum() and squaredNorm() take for
-/// double but not for lanes2 (docs/performance.md, "Two particles at once in the library"). In
-/// a portable build it is the same bits as Eigen's sum; without lanes, and for other scalars,
-/// Eigen's own sum is kept.
-template <class Real>
-[[nodiscard]] GIMLET_INLINE Real contract3(const Eigen::Matrix<Real, 3, 3>& a, const Eigen::Matrix<Real, 3, 3>& b) {
-    if constexpr (GIMLET_HAS_LANES && (is_lanes<Real> || std::is_same_v<Real, double>)) {
-        const Real* x = a.data();
-        const Real* y = b.data();
-        return ((x[0] * y[0] + x[2] * y[2]) + (x[4] * y[4] + x[6] * y[6])) +
-               ((x[1] * y[1] + x[3] * y[3]) + (x[5] * y[5] + x[7] * y[7])) + x[8] * y[8];
-    } else {
-        return a.cwiseProduct(b).sum();
-    }
-}
 
 /// Whether a condition holds: a bool as it is; a lane mask in every lane (for the assertions
 /// of code written for both).
@@ -174,11 +104,9 @@ template <class Real>
 /// A constitutive policy whose templates on Real compute lane by lane when Real is a lane type,
 /// with the operations it would take on each double in the same order, and that says so:
 /// `static constexpr bool lane_safe = true;`. The promise (docs/concepts.md, "Two particles at
-/// once"): no branch or library call on a Real value (select, any_lane and sqrt above instead),
-/// or each lane by the double code (per_lane); no Eigen reduction over three or more stored
-/// entries (sum, squaredNorm, dot: Eigen orders them differently for double; contract3
-/// instead); no long double; nothing through the particle handle but the policy's own fields;
-/// p.reject() where it would stop the run.
+/// once"): no branch, comparison or library call on a Real value; no Eigen reduction over
+/// three or more stored entries (sum, squaredNorm, dot: Eigen orders them differently for
+/// double); no long double; nothing read or written through the particle handle.
 template <class Policy>
 concept lane_safe = requires {
     requires bool(Policy::lane_safe);

@@ -6,7 +6,6 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
-#include "gimlet/core/lanes.hpp"
 #include "gimlet/eos/concepts.hpp"
 
 #include <algorithm>
@@ -40,8 +39,6 @@ enum class energy_reference {
 template <energy_reference Ref = energy_reference::internal_energy>
 class mie_gruneisen {
 public:
-    /// Its templates compute each particle of a pair by the double code (gimlet::lane_safe).
-    static constexpr bool lane_safe = true;
     using required_fields = std::conditional_t<Ref == energy_reference::plastic_work,
                                                field_list<fields::plastic_work>, field_list<>>;
     /// The standard form takes the thermal energy e_th = e - s:s/(4 G rho) (eos::Eos).
@@ -88,22 +85,16 @@ public:
     /// the thermal pressure): P = [P_H + Gamma rho (e_b - w_s - e_H)] / (1 + Gamma rho f).
     template <class Real, class P>
     [[nodiscard]] GIMLET_INLINE Real pressure(const point_step<Real>& st, const P& p) const {
-        // Each particle in double (a pair: each lane by the same code, gimlet::per_lane).
-        return per_lane<Real>([&](int k) {
-            const double j = lane(st.J, k);
-            if (singular(j)) {
-                if constexpr (is_lanes<Real>) return p.reject(), 0.0;  // the one-at-a-time update names it
-                else singularity_reached(1.0 - j, p, st.step, st.time);
-            }
-            const double grho = gamma_ * lane(st.density, k);
-            const double ph = hugoniot_pressure(j);
-            if constexpr (Ref == energy_reference::plastic_work) {
-                return ph + grho * lane(p.template get<fields::plastic_work>(), k);
-            } else {
-                const double eb = lane(st.energy_before_pressure, k) - lane(st.shear_energy, k);
-                return (ph + grho * (eb - hugoniot_energy(j))) / (1.0 + grho * lane(st.pressure_work_factor, k));
-            }
-        });
+        check_singularity(double(st.J), p, st.step, st.time);
+        const double j = double(st.J);
+        const double grho = gamma_ * double(st.density);
+        const double ph = hugoniot_pressure(j);
+        if constexpr (Ref == energy_reference::plastic_work) {
+            return Real(ph + grho * double(p.template get<fields::plastic_work>()));
+        } else {
+            const double eb = double(st.energy_before_pressure) - double(st.shear_energy);
+            return Real((ph + grho * (eb - hugoniot_energy(j))) / (1.0 + grho * double(st.pressure_work_factor)));
+        }
     }
 
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
@@ -119,20 +110,18 @@ public:
     }
     template <class Real, class P>
     [[nodiscard]] Real bulk_modulus(const point_state<Real>& st, const P& p, unsigned& guards) const {
-        return per_lane<Real>([&](int k) {
-            const double j_cap = 1.0 - (1.0 - margin_) / s_;
-            if (!(lane(st.J, k) >= j_cap)) guards |= guard::compression_capped;
-            const double j = std::max(lane(st.J, k), j_cap);
-            const double eta = 1.0 - j;
-            const double grho = gamma_ * lane(st.density, k);
-            const double excess = energy_excess(j, p, k);
-            const double ph = hugoniot_pressure(j), dph = hugoniot_slope(j);
-            const double pres = ph + grho * excess;
-            // -V d/dV = J d/d(eta) and Gamma de_H/dV = -Gamma (P_H + eta P_H') / 2, with P_H' = dP_H/d(eta).
-            const double k_s = j * dph + grho * excess - 0.5 * gamma_ * (ph + eta * dph) + gamma_ * pres;
-            if (!(k_s >= 0.0)) guards |= guard::negative_modulus;
-            return std::max(k_s, 0.0);
-        });
+        const double j_cap = 1.0 - (1.0 - margin_) / s_;
+        if (!(double(st.J) >= j_cap)) guards |= guard::compression_capped;
+        const double j = std::max(double(st.J), j_cap);
+        const double eta = 1.0 - j;
+        const double grho = gamma_ * double(st.density);
+        const double excess = energy_excess(j, p);
+        const double ph = hugoniot_pressure(j), dph = hugoniot_slope(j);
+        const double pres = ph + grho * excess;
+        // -V d/dV = J d/d(eta) and Gamma de_H/dV = -Gamma (P_H + eta P_H') / 2, with P_H' = dP_H/d(eta).
+        const double k = j * dph + grho * excess - 0.5 * gamma_ * (ph + eta * dph) + gamma_ * pres;
+        if (!(k >= 0.0)) guards |= guard::negative_modulus;
+        return Real(std::max(k, 0.0));
     }
 
     [[nodiscard]] double density0() const noexcept { return rho0_; }
@@ -142,15 +131,15 @@ public:
 
 private:
     template <class P>
-    [[nodiscard]] double energy_excess(double j, const P& p, int k) const {
-        if constexpr (Ref == energy_reference::plastic_work) return lane(p.template get<fields::plastic_work>(), k);
-        else return lane(p.template get<fields::specific_internal_energy>(), k) - hugoniot_energy(j);
+    [[nodiscard]] double energy_excess(double j, const P& p) const {
+        if constexpr (Ref == energy_reference::plastic_work) return double(p.template get<fields::plastic_work>());
+        else return double(p.template get<fields::specific_internal_energy>()) - hugoniot_energy(j);
     }
 
-    /// Whether J has reached the stop: 1 - s eta <= singularity_margin in compression.
-    [[nodiscard]] GIMLET_INLINE bool singular(double j) const {
+    template <class P>
+    GIMLET_INLINE void check_singularity(double j, const P& p, std::size_t step, double time) const {
         const double eta = 1.0 - j;
-        return eta > 0.0 && 1.0 - s_ * eta <= margin_;
+        if (eta > 0.0 && 1.0 - s_ * eta <= margin_) singularity_reached(eta, p, step, time);
     }
     template <class P>
     [[noreturn]] GIMLET_COLD void singularity_reached(double eta, const P& p, std::size_t step, double time) const {

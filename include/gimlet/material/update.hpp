@@ -16,7 +16,6 @@
 #include "gimlet/strength/jaumann.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
@@ -83,9 +82,8 @@ template <Material M, class P>
     else k = mat.eos.bulk_modulus(st, p);
     const real g = mat.strength.shear_modulus(st, p);
     const real c2 = (k + real(4) / real(3) * g) / st.density;
-    if (any_lane(!(c2 > real(0)))) guards |= eos::guard::no_wave_speed;
-    using std::sqrt;
-    return sqrt(select(real(0) < c2, c2, real(0)));  // std::max(0, c2): 0 for a NaN too
+    if (!(c2 > 0)) guards |= eos::guard::no_wave_speed;
+    return std::sqrt(std::max(real(0), c2));
 }
 template <Material M, class P>
 [[nodiscard]] auto longitudinal_wave_speed(const P& p, const M& mat) {
@@ -203,12 +201,11 @@ void update_material_point(const M& mat, const P& p,
     // thermal policy or an EOS that reads it (eos::reads_shear_energy).
     if constexpr (M::thermal_type::enabled || eos::reads_shear_energy<typename M::eos_type>) {
         const real shear = mat.strength.shear_modulus(static_cast<const point_state<real>&>(st), p);
-        st.shear_energy = select(shear > real(0), contract3(s, s) / (real(4) * shear * st.density), real(0));
+        st.shear_energy = shear > 0 ? s.squaredNorm() / (real(4) * shear * st.density) : real(0);
     }
     const real pres = mat.eos.pressure(st, p);
     if constexpr (is_lanes<real>) {
-        // A policy that would stop the run for either particle has rejected the pair.
-        if (p.rejected() || !finite_lanes(pres).all()) return p.reject();
+        if (!finite_lanes(pres).all()) return p.reject();
     } else if (!std::isfinite(pres)) {
         throw numerical_error(describe_particle(p, step, time) + ": the EOS returned a non-finite pressure");
     }
@@ -220,31 +217,15 @@ void update_material_point(const M& mat, const P& p,
     if constexpr (dim == 2) p.template get<fields::stress_zz>() = sigma_new(2, 2);
 }
 
-namespace detail {
-/// The fields the particle pair holds for the update itself (not as the material's own).
-template <class Tag>
-inline constexpr bool pair_core_field =
-    std::is_same_v<Tag, fields::deformation_gradient> || std::is_same_v<Tag, fields::stress> ||
-    std::is_same_v<Tag, fields::stress_zz> || std::is_same_v<Tag, fields::specific_internal_energy> ||
-    std::is_same_v<Tag, fields::mass> || std::is_same_v<Tag, fields::volume0>;
-/// Whether every field of a list that the pair would carry for the material is a scalar in S.
-template <class Fields, class S>
-inline constexpr bool all_scalar_fields = false;
-template <class... Tags, class S>
-inline constexpr bool all_scalar_fields<field_list<Tags...>, S> =
-    ((pair_core_field<Tags> || std::is_same_v<typename Tags::template type<S>, typename S::real>) && ...);
-}  // namespace detail
-
 /// Whether the solver may update two particles of material M at once (update_material_points_2):
-/// plane strain in double, every policy that is on lane_safe (a thermal policy or viscosity
-/// that is off runs no code), and the material's own fields scalars (the pair carries them).
+/// plane strain in double, a strength and an EOS that are lane_safe, no thermal policy, no
+/// viscosity and no EOS that reads the shear energy (the update's own code for those branches
+/// on values).
 template <Material M, class S>
 inline constexpr bool lanes_capable = [] {
     if constexpr (GIMLET_HAS_LANES && S::dim == 2 && std::is_same_v<typename S::real, double>)
-        return lane_safe<typename M::strength_type> && lane_safe<typename M::eos_type> &&
-               (!M::thermal_type::enabled || lane_safe<typename M::thermal_type>) &&
-               (!M::viscosity_type::enabled || lane_safe<typename M::viscosity_type>) &&
-               detail::all_scalar_fields<typename M::required_fields, S>;
+        return lane_safe<typename M::strength_type> && lane_safe<typename M::eos_type> && !M::thermal_type::enabled &&
+               !M::viscosity_type::enabled && !eos::reads_shear_energy<typename M::eos_type>;
     else
         return false;
 }();
@@ -252,8 +233,8 @@ inline constexpr bool lanes_capable = [] {
 #if GIMLET_HAS_LANES
 namespace detail {
 /// Two plane-strain particles as one particle handle whose scalar is lanes2: copies of the
-/// fields the material update reads and writes, and of the material's own (scalar) fields,
-/// which update_material_points_2 loads and stores.
+/// fields the material update reads and writes (update_material_points_2 loads and stores
+/// them). A lane_safe policy reads nothing through its handle.
 struct lane_space2 {
     static constexpr int dim = 2;
     using real = lanes2;
@@ -261,28 +242,13 @@ struct lane_space2 {
     using matrix = Eigen::Matrix<lanes2, 2, 2>;
     using tensor3 = Eigen::Matrix<lanes2, 3, 3>;
 };
-
-template <class Tag, class... Tags>
-inline constexpr std::size_t index_in = [] {
-    std::size_t i = 0;
-    ((std::is_same_v<Tag, Tags> ? false : (++i, true)) && ...);
-    return i;
-}();
-
-template <class Fields>
-struct particle_pair;
-template <class... Own>
-struct particle_pair<field_list<Own...>> {
+struct particle_pair {
     using space_type = lane_space2;
     mutable lane_space2::matrix F, stress;
     mutable lanes2 stress_zz, energy;
     lanes2 mass, volume0;  // read only: the update writes neither, and neither is stored back
-    mutable std::array<lanes2, sizeof...(Own)> own{};  // the material's fields, in its list's order
-    mutable bool rejected_ = false;
-    /// A policy that would stop the run for either particle calls it (and returns any value):
-    /// the pair is then updated one particle at a time, which stops with the message.
-    void reject() const noexcept { rejected_ = true; }
-    [[nodiscard]] bool rejected() const noexcept { return rejected_; }
+    mutable bool rejected = false;
+    void reject() const noexcept { rejected = true; }
     template <class Field>
     [[nodiscard]] auto& get() const noexcept {
         if constexpr (std::is_same_v<Field, fields::deformation_gradient>) return F;
@@ -291,8 +257,7 @@ struct particle_pair<field_list<Own...>> {
         else if constexpr (std::is_same_v<Field, fields::specific_internal_energy>) return energy;
         else if constexpr (std::is_same_v<Field, fields::mass>) return mass;
         else if constexpr (std::is_same_v<Field, fields::volume0>) return volume0;
-        else if constexpr ((std::is_same_v<Field, Own> || ...)) return own[index_in<Field, Own...>];
-        else static_assert(sizeof(Field) == 0, "a lane_safe policy reads only its own required_fields through its particle handle");
+        else static_assert(sizeof(Field) == 0, "a lane_safe policy reads no field through its particle handle");
     }
 };
 }  // namespace detail
@@ -314,25 +279,15 @@ template <Material M, class P>
             for (int i = 0; i < 2; ++i) r(i, j) = lanes2(x(i, j), y(i, j));
         return r;
     };
-    using own_fields = typename M::required_fields;
-    detail::particle_pair<own_fields> pair;
+    detail::particle_pair pair;
     pair.F = pack(a.template get<fields::deformation_gradient>(), b.template get<fields::deformation_gradient>());
     pair.stress = pack(a.template get<fields::stress>(), b.template get<fields::stress>());
     pair.stress_zz = lanes2(a.template get<fields::stress_zz>(), b.template get<fields::stress_zz>());
     pair.energy = lanes2(a.template get<fields::specific_internal_energy>(), b.template get<fields::specific_internal_energy>());
     pair.mass = lanes2(a.template get<fields::mass>(), b.template get<fields::mass>());
     pair.volume0 = lanes2(a.template get<fields::volume0>(), b.template get<fields::volume0>());
-    auto each_own = [&]<class... Own>(field_list<Own...>, auto&& f) {
-        auto one = [&]<class Tag>(Tag*) {
-            if constexpr (!detail::pair_core_field<Tag>)
-                f(pair.own[detail::index_in<Tag, Own...>], a.template get<Tag>(), b.template get<Tag>());
-        };
-        (one(static_cast<Own*>(nullptr)), ...);
-        (void)one, (void)f;  // a material with no fields of its own
-    };
-    each_own(own_fields{}, [](lanes2& x, double xa, double xb) { x = lanes2(xa, xb); });
     update_material_point(mat, pair, pack(La, Lb), lanes2(dt), lanes2(cell), step, time);
-    if (pair.rejected()) return false;
+    if (pair.rejected) return false;
     auto unpack = [](const matrix2& r, auto& x, auto& y) {
         for (int j = 0; j < 2; ++j)
             for (int i = 0; i < 2; ++i) x(i, j) = r(i, j)[0], y(i, j) = r(i, j)[1];
@@ -343,7 +298,6 @@ template <Material M, class P>
     b.template get<fields::stress_zz>() = pair.stress_zz[1];
     a.template get<fields::specific_internal_energy>() = pair.energy[0];
     b.template get<fields::specific_internal_energy>() = pair.energy[1];
-    each_own(own_fields{}, [](const lanes2& x, double& xa, double& xb) { xa = x[0], xb = x[1]; });
     return true;
 }
 #endif

@@ -5,7 +5,6 @@
 /// radial return.
 
 #include "gimlet/core/detail/inline.hpp"
-#include "gimlet/core/lanes.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/strength/concepts.hpp"
 #include "gimlet/strength/jaumann.hpp"
@@ -37,31 +36,21 @@ public:
         require_non_negative("hardening modulus H (Pa)", hardening_modulus);
     }
 
-    /// Its templates compute lane by lane for a lane type (gimlet::lane_safe): the yield test
-    /// selects per particle, the equivalent stress is summed in contract3's fixed order.
-    static constexpr bool lane_safe = true;
-
     template <class Real, class P>
     GIMLET_INLINE Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& p) const {
-        using std::sqrt;
         s = jaumann_rotate(st, s);
         s += st.dt * Real(2 * g_) * deviator(st.D);
         Real& eps_p = p.template get<fields::plastic_strain>();
         const Real y_old = Real(y0_) + Real(h_) * eps_p;
-        const Real sigma_eq = sqrt(Real(1.5) * contract3(s, s));
-        // Per particle (a bool, or a mask for two at once): whether it yields. A particle that
-        // does not keeps s, eps_p and w_p as they are (selected, not multiplied by 1).
-        const auto yields = !(sigma_eq <= y_old);
-        if (!any_lane(yields)) return Real(0);
+        const Real sigma_eq = std::sqrt(Real(1.5) * s.cwiseProduct(s).sum());
+        if (sigma_eq <= y_old) return Real(0);
         const Real d_eps = (sigma_eq - y_old) / Real(3 * g_ + h_);
         const Real y_new = y_old + Real(h_) * d_eps;
-        const Real scale = y_new / sigma_eq;
-        for (int k = 0; k < 9; ++k) s(k) = select(yields, s(k) * scale, s(k));
-        eps_p = select(yields, eps_p + d_eps, eps_p);
+        s *= y_new / sigma_eq;
+        eps_p += d_eps;
         const Real dw = Real(0.5) * (y_old + y_new) * d_eps / st.density;
-        Real& w_p = p.template get<fields::plastic_work>();
-        w_p = select(yields, w_p + dw, w_p);
-        return select(yields, dw, Real(0));
+        p.template get<fields::plastic_work>() += dw;
+        return dw;
     }
 
     template <class Real, class P>

@@ -4,7 +4,6 @@
 /// Shock heating along the Hugoniot (Walsh-Christian) plus plastic-work heating.
 
 #include "gimlet/core/error.hpp"
-#include "gimlet/core/lanes.hpp"
 #include "gimlet/thermal/concepts.hpp"
 #include "gimlet/thermal/detail/parameters.hpp"
 
@@ -33,7 +32,6 @@ template <expansion X = expansion::hugoniot>
 class hugoniot_heating {
 public:
     static constexpr bool enabled = true;
-    static constexpr bool lane_safe = true;  // a pair: each particle by the double code (update)
     using required_fields = field_list<fields::temperature>;
 
     /// \param density0 rho_0 (kg/m^3); \param sound_speed c_0 (m/s); \param slope s (> 1);
@@ -51,13 +49,10 @@ public:
         t = static_cast<std::remove_cvref_t<decltype(t)>>(t0_);
     }
 
-    /// For a pair of particles (gimlet::lane_safe) each by the same double code.
     template <class Real, class P>
     void update(const point_step<Real>& st, Real dissipated, const P& p) const {
         Real& t = p.template get<fields::temperature>();
-        t = per_lane<Real>([&](int k) {
-            return advance(lane(t, k), v0_ * lane(st.J_old, k), v0_ * lane(st.J, k)) + lane(dissipated, k) / cv_;
-        });
+        t = Real(advance(double(t), v0_ * double(st.J_old), v0_ * double(st.J)) + double(dissipated) / cv_);
     }
 
     /// Temperature after a volume change from v_old to v_new (specific volumes, m^3/kg)

@@ -7,7 +7,6 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
-#include "gimlet/core/lanes.hpp"
 #include "gimlet/eos/mie_gruneisen.hpp"
 #include "gimlet/thermal/concepts.hpp"
 #include "gimlet/thermal/detail/parameters.hpp"
@@ -51,7 +50,6 @@ namespace gimlet::thermal {
 class isentrope_temperature {
 public:
     static constexpr bool enabled = true;
-    static constexpr bool lane_safe = true;  // a pair: each particle by the double code (update)
     using required_fields = field_list<fields::temperature>;
 
     /// \param density0 rho_0 (kg/m^3); \param sound_speed c_0 (m/s); \param slope s (> 1);
@@ -78,28 +76,13 @@ public:
     }
 
     /// T from the end-of-step state. `dissipated` (plastic work) is already in e: not added again.
-    /// For a pair of particles (gimlet::lane_safe) each by the same double code; a particle that
-    /// would stop the run rejects the pair, and the one-at-a-time update names it.
     template <class Real, class P>
     GIMLET_INLINE void update(const point_step<Real>& st, Real /*dissipated*/, const P& p) const {
-        const Real e = p.template get<fields::specific_internal_energy>();
-        p.template get<fields::temperature>() = per_lane<Real>([&](int k) {
-            const double j = lane(st.J, k);
-            const double e_th = lane(e, k) - lane(st.shear_energy, k);
-            double reference;
-            if constexpr (is_lanes<Real>) {
-                if (!(j > j_sing())) return p.reject(), 0.0;  // before the table, which needs J > J_sing
-                reference = table_->at(*this, j);
-            } else {
-                reference = reference_energy(j, p, st.step, st.time);
-            }
-            const double below = reference - e_th;
-            if (below > cv_ * cold_) {
-                if constexpr (is_lanes<Real>) return p.reject(), 0.0;
-                else too_cold(j, e_th, below, p, st.step, st.time);
-            }
-            return isentrope(j) - below / cv_;
-        });
+        const double j = double(st.J);
+        const double e_th = double(p.template get<fields::specific_internal_energy>()) - double(st.shear_energy);
+        const double below = reference_energy(j, p, st.step, st.time) - e_th;
+        if (below > cv_ * cold_) too_cold(j, e_th, below, p, st.step, st.time);
+        p.template get<fields::temperature>() = Real(isentrope(j) - below / cv_);
     }
 
     /// T_s(J) = T0 J^-Gamma, the reference isentrope's temperature (K).

@@ -5,7 +5,6 @@
 
 #include "gimlet/core/detail/inline.hpp"
 #include "gimlet/core/error.hpp"
-#include "gimlet/core/lanes.hpp"
 #include "gimlet/viscosity/concepts.hpp"
 
 #include <cmath>
@@ -31,7 +30,6 @@ class bulk {
 public:
     static constexpr bool enabled = true;
     static constexpr bool lazy_sound_speed = true;  // q reads the wave speed only in compression
-    static constexpr bool lane_safe = true;         // pressure: compression as a select
     using required_fields = field_list<fields::compression_rate>;
 
     /// \param quadratic b2 >= 0 (q's quadratic term has b2 squared); \param linear b1 >= 0.
@@ -46,17 +44,14 @@ public:
     template <class Real, class C, class P>
         requires std::convertible_to<C, Real> || std::is_invocable_r_v<Real, const C&>
     [[nodiscard]] GIMLET_INLINE Real pressure(const point_step<Real>& st, const C& sound_speed, const P& p) const {
-        // Written for a pair too (gimlet::lane_safe): per particle, compression selects.
-        const Real tr = st.D.trace();
-        const Real rate = select(tr < Real(0), -tr, Real(0));
+        const Real rate = st.D.trace() < 0 ? -st.D.trace() : Real(0);
         p.template get<fields::compression_rate>() = rate;
-        const auto compressing = rate > Real(0);
-        if (!any_lane(compressing)) return Real(0);
+        if (!(rate > 0)) return Real(0);
         const Real h = st.length;
         Real c;
-        if constexpr (std::is_invocable_r_v<Real, const C&>) c = sound_speed();  // a pair: both, if either compresses
+        if constexpr (std::is_invocable_r_v<Real, const C&>) c = sound_speed();
         else c = Real(sound_speed);
-        return select(compressing, st.density * h * (Real(b2_ * b2_) * h * rate * rate + Real(b1_) * c * rate), Real(0));
+        return st.density * h * (Real(b2_ * b2_) * h * rate * rate + Real(b1_) * c * rate);
     }
 
     /// The signal speed that sets the stable time step of particle p with wave speed c on cells
