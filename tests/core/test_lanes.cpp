@@ -71,6 +71,10 @@ struct linear_elastic_alone : gimlet::strength::linear_elastic {
 using user_material = gimlet::material<stiffening_elastic, gimlet::eos::linear>;
 using user_material_alone = gimlet::material<stiffening_elastic_alone, gimlet::eos::linear>;  // a type, not a solver
 using elastic_alone = gimlet::material<linear_elastic_alone, gimlet::eos::linear>;
+// The same elastic material without the declaration.
+elastic_alone alone_of(const gimlet::elastic_material& m) {
+    return {m.density, linear_elastic_alone{m.strength.shear_modulus()}, m.eos};
+}
 
 static_assert(gimlet::lanes_capable<gimlet::elastic_material, S>);
 static_assert(gimlet::lanes_capable<user_material, S>);
@@ -78,7 +82,7 @@ static_assert(!gimlet::lanes_capable<user_material_alone, S>);
 static_assert(!gimlet::lanes_capable<elastic_alone, S>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<3>>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<2, float>>);
-static_assert(!gimlet::lanes_capable<gimlet::materials::hmx_material<>, S>);  // von Mises branches on the yield test
+static_assert(!gimlet::lanes_capable<gimlet::materials::hmx_material<>, S>);  // von Mises branches on the yield test (written for lanes, it gained nothing: docs/performance.md)
 
 // n particles in random states: stretched, sheared and rotated F (det F from 0.5 to 1.5),
 // stresses of either sign up to 1 GPa, energies, masses and volumes.
@@ -314,16 +318,13 @@ TEST_CASE("two particles at once: a solver that pairs its particles runs to the 
     // to compile: a user's law goes through the same solver code, and its pairs are checked
     // against its singles above).
     const auto mat = gimlet::make_elastic_material(1800.0, 20e9, 0.3), soft = gimlet::make_elastic_material(1500.0, 8e9, 0.35);
-    auto alone = [](const gimlet::elastic_material& m) {
-        return elastic_alone{m.density, linear_elastic_alone{m.strength.shear_modulus()}, m.eos};
-    };
-    check_solver_pairs(mat, soft, alone(mat), alone(soft));
+    check_solver_pairs(mat, soft, alone_of(mat), alone_of(soft));
 }
 
 TEST_CASE("two particles at once: an inverted particle is named as one at a time names it", "[core][lanes]") {
     // The first particle to invert, found by a solver that pairs and one that does not.
     const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
-    const elastic_alone alone{mat.density, linear_elastic_alone{mat.strength.shear_modulus()}, mat.eos};
+    const elastic_alone alone = alone_of(mat);
     auto message = [](auto&& sol) {
         try {
             sol.step(0.01);  // far beyond the CFL limit
