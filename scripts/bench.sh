@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, the material update with two particles per vector, throughput (the reference scene and
-# the 2-D HMX step, 1 and 2 threads, scaling with particle count), the cost of each effect,
-# accuracy against time, and the flagship's outputs against outputs off. CSVs and Markdown tables go to results/bench/, plots to
-# docs/perf_*.png (drawn with Debian's /usr/bin/python3, which has matplotlib).
+# Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, the material
+# update with two particles per vector, throughput (the reference scene and the 2-D HMX step,
+# 1 and 2 threads, scaling with particle count), the per-phase roofline, the cost of each
+# effect, accuracy against time, and the flagship's outputs against outputs off. CSVs and
+# Markdown tables go to results/bench/, plots to docs/perf_*.png (drawn with Debian's
+# /usr/bin/python3, which has matplotlib).
 #
-#   scripts/bench.sh            the full run (about 25-35 minutes on an idle 2-core machine)
+#   scripts/bench.sh            the full run (about 30-40 minutes on an idle 2-core machine)
 #   scripts/bench.sh --quick    a smoke run of every benchmark (a minute)
 #
 # The machine's load average is recorded before and after each benchmark: timings on a busy
@@ -17,6 +19,9 @@ cd "$repo_root"
 quick=0
 [ "${1:-}" = "--quick" ] && quick=1
 
+# What the run needs (the compiler, Eigen, matplotlib for the plots, valgrind and objdump for
+# the per-phase roofline): installed where missing.
+bash scripts/setup.sh --bench >/dev/null
 build="${GIMLET_BENCH_BUILD:-build/bench}"
 out="${GIMLET_BENCH_OUTPUT:-results/bench}"
 # The flagship too (and no other example): its outputs are timed against outputs off below.
@@ -47,6 +52,7 @@ if [ "$quick" = 1 ]; then
     acc_args=(--quick 1)
     ceil_args=(--quick 1)
     lanes_args=(--repeats 1 --cell 2)
+    roof_args=(--runs 1 --steps 5 --short 1 --long 2 --cell 2)
 else
     ref_args=(--cell 0.5 --steps 1000 --repeats 3)
     sizes=(2 1 0.5 0.25 0.125)
@@ -54,6 +60,7 @@ else
     acc_args=()
     ceil_args=()
     lanes_args=()
+    roof_args=()
 fi
 
 # The machine's ceilings (floating-point throughput and bandwidth) that docs/performance.md's
@@ -80,7 +87,12 @@ for t in 1 2; do
     "$bin/throughput/bench_throughput" --scene hmx --threads "$t" --cell 0.5 --steps "${ref_args[3]}" \
         --repeats 1 --phases 1 2>&1 >/dev/null | sed "s/^/hmx, $t threads: /"
 done | tee "$out/phases.txt"
-load "throughput end / scaling start"
+load "throughput end / roofline start"
+# The per-phase roofline (docs/performance.md, "What bounds each phase"): each phase's time
+# (solver::timings()) against its work (callgrind's counts) and this run's ceilings.
+python3 benchmarks/roofline/roofline.py "$bin/throughput/bench_throughput" "$out/ceilings.md" "${roof_args[@]}" \
+    | tee "$out/roofline.md"
+load "roofline end / scaling start"
 
 # Scaling: the same number of particle-updates at each size (250 steps at 64,000 particles),
 # but no more simulated time than the reference run's 14 us (coarse grids take long steps and

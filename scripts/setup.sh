@@ -7,6 +7,7 @@
 #                                   (scripts/quickstart.sh)
 #   bash scripts/setup.sh --tests   building and running the test suite: both presets, the
 #                                   asan-ubsan one with clang (scripts/test.sh; docs/testing.md)
+#   bash scripts/setup.sh --bench   running the benchmarks (scripts/bench.sh; docs/performance.md)
 set -euo pipefail
 
 # Both: the compiler and build tools, Eigen, and Catch2 (the release preset configures the tests).
@@ -17,7 +18,9 @@ case "${1:-}" in
     # slowest tests and units; VTK's Python module reads our .vtp files back in the
     # independent-reader test (tests/io/independent/).
     --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9) ;;
-    *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests]" >&2; exit 2 ;;
+    # the plots, and the per-phase roofline's instruction counts (valgrind's callgrind, objdump)
+    --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils) ;;
+    *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests | --bench]" >&2; exit 2 ;;
 esac
 
 is_installed() {

@@ -1,0 +1,477 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""The per-phase roofline of docs/performance.md ("What bounds each phase"), measured.
+
+For each scene of bench_throughput (reference, hmx; one thread, 0.5 mm cells, 64,000 particles)
+it measures, per particle-update and per phase of solver::timings():
+
+  time      the phase's share of the step (solver::timings(), the median of --runs runs) times
+            the step's wall time per particle-update;
+  work      the instructions the phase executes, counted by valgrind's callgrind (--dump-instr)
+            and classified by disassembly (objdump -M intel): floating-point operations
+            (add, subtract, multiply: one per lane; a fused multiply-add two), divisions and
+            square roots (per lane), the calls into libm by name, and the bytes the L3 or
+            memory delivers (the 64-byte lines of the read and write misses of callgrind's
+            simulated caches, set to this machine's L1 data cache and L2). Two runs of --short
+            and --long steps are subtracted, so setting up the scene cancels.
+
+and sets them against the machine's ceilings, read from bench_ceilings' table (ceilings.md):
+the scalar and SSE2 multiply-add throughput, the 22 MB triad, and the cost of a division, a
+square root, pow and log, each at its throughput (one at a time, independent inputs).
+
+A phase's bound is the largest of its resources' times: flops at the SSE2 ceiling (the portable
+build's vector width), bytes at the 22 MB triad, divisions and roots at their throughput (one
+divider: they do not overlap each other). The table also gives the bound with flops at the
+scalar ceiling, what code one particle at a time can reach. Calls into libm count as their own
+instructions, flops and divisions included (their costs above are printed for reference).
+
+Attribution: each function callgrind saw is given to a phase by its name (the solver member a
+lambda or an OpenMP region belongs to, table PHASES below); a function no pattern names (a
+helper, libm) is shared out among its callers in proportion to the instructions each call
+costs. What no phase owns is reported as `other`.
+
+    roofline.py BENCH_THROUGHPUT CEILINGS_MD [--runs 3] [--steps 300] [--short 3] [--long 13]
+    roofline.py --self-test     checks the classifier and the parser on known input
+"""
+import argparse
+import collections
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+# solver::timings()' phases, in its order, with the names of the solver members (and the
+# policies' hooks) that run in each (include/gimlet/solver/solver.hpp, begin_step and musl_step).
+PHASES = [
+    ("P2G", r"compute_stencils?\b|::scatter\b|slab_schedule::bucket\b|\bbucket\(|::prepare\(|choose_fields|"
+            r"clear_grid|find_light_particles|find_shared_nodes|average_mean_stress|self_contact::initialize"),
+    ("grid", r"update_grid_momentum|consistent_mass"),
+    ("contact", r"resolve_contact"),
+    ("G2P", r"grid_to_particles|nodal_velocity|apply_walls"),
+    ("material", r"finish_step|material_pass|update_material_point|update_material_pair|velocity_gradient|"
+                 r"filter_volumes|average_volumetric_rates|contact_hook|check_pending|count_health"),
+]
+SCENE_NAMES = {"reference": "reference (elastic)", "hmx": "HMX, the flagship's defaults"}
+
+
+def strip_templates(name):
+    """A demangled name without its template arguments (a lambda's enclosing function and the
+    parameter types stay)."""
+    out, depth = [], 0
+    for ch in name:
+        if ch == "<":
+            depth += 1
+        elif ch == ">":
+            depth = max(depth - 1, 0)
+        elif depth == 0:
+            out.append(ch)
+    return "".join(out)
+
+
+def phase_of(name):
+    s = strip_templates(name)
+    for phase, pattern in PHASES:
+        if re.search(pattern, s):
+            return phase
+    return None
+
+
+# ---- callgrind's output (format version 1, positions "instr line", events "Ir")
+def parse_callgrind(path):
+    """Self counts per (object, function, address) and the call edges (caller, callee,
+    calls, inclusive Ir)."""
+    names = {"ob": {}, "fn": {}}
+    events = ["Ir"]
+    self_counts = collections.defaultdict(dict)  # (ob, fn) -> addr -> [count per event]
+    edges = collections.defaultdict(lambda: [0, 0])  # ((ob, fn), (cob, cfn)) -> [calls, inclusive Ir]
+    ob = fn = cob = cfn = None
+    last = 0
+    pending_call = None
+
+    def ref(kind, rest):
+        m = re.match(r"\((\d+)\)(?: (.*))?", rest)
+        if not m:
+            return rest
+        if m.group(2) is not None:
+            names[kind][m.group(1)] = m.group(2)
+        return names[kind].get(m.group(1), m.group(1))
+
+    def position(tok):
+        nonlocal last
+        if tok.startswith("0x"):
+            last = int(tok, 16)
+        elif tok.startswith("+"):
+            last += int(tok[1:])
+        elif tok.startswith("-"):
+            last -= int(tok[1:])
+        # "*": the same position
+        return last
+
+    with open(path) as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if not line or line[0] == "#":
+                continue
+            c = line[0]
+            if c in "0123456789+-*":
+                parts = line.split()
+                addr = position(parts[0])
+                counts = [int(x) for x in parts[2:]]  # after the two positions (instr, line)
+                counts += [0] * (len(events) - len(counts))
+                if pending_call is not None:
+                    e = edges[((ob, fn), pending_call)]
+                    e[1] += counts[0]
+                    pending_call = None
+                else:
+                    acc = self_counts[(ob, fn)].setdefault(addr, [0] * len(events))
+                    for k, v in enumerate(counts):
+                        acc[k] += v
+                continue
+            if line.startswith("events:"):
+                events = line.split()[1:]
+                continue
+            key, _, rest = line.partition("=")
+            if key == "ob":
+                ob = ref("ob", rest)
+                cob = None
+            elif key == "fn":
+                fn = ref("fn", rest)
+                cob = None
+            elif key in ("fl", "fi", "fe", "cfi", "cfl"):
+                pass
+            elif key == "cob":
+                cob = ref("ob", rest)
+            elif key == "cfn":
+                cfn = ref("fn", rest)
+            elif key == "calls":
+                calls = int(rest.split()[0])
+                callee = (cob if cob is not None else ob, cfn)
+                edges[((ob, fn), callee)][0] += calls
+                pending_call = callee
+                # the next line's position is the call's; positions stay relative to it
+                cob = None
+    return events, self_counts, edges
+
+
+# ---- classification of instructions
+FLOP_OPS = re.compile(r"^v?(add|sub|mul)(s|p)(d|s)$")
+FMA_OPS = re.compile(r"^vf(n?)m(add|sub)(132|213|231)(s|p)(d|s)$")
+DIV_OPS = re.compile(r"^v?div(s|p)(d|s)$")
+SQRT_OPS = re.compile(r"^v?sqrt(s|p)(d|s)$")
+
+
+def lanes(kind, prec, operands):
+    if kind == "s":
+        return 1
+    width = 16
+    if "ymm" in operands:
+        width = 32
+    if "zmm" in operands:
+        width = 64
+    return width // (8 if prec == "d" else 4)
+
+
+def classify(mnemonic, operands):
+    """(flops, divisions, roots) of one execution."""
+    flops = divs = roots = 0
+    m = FLOP_OPS.match(mnemonic)
+    if m:
+        flops = lanes(m.group(2), m.group(3), operands)
+    m = FMA_OPS.match(mnemonic)
+    if m:
+        flops = 2 * lanes(m.group(4), m.group(5), operands)
+    m = DIV_OPS.match(mnemonic)
+    if m:
+        divs = lanes(m.group(1), m.group(2), operands)
+    m = SQRT_OPS.match(mnemonic)
+    if m:
+        roots = lanes(m.group(1), m.group(2), operands)
+    return flops, divs, roots
+
+
+_disassembly = {}
+
+
+def disassembly(obj):
+    """address -> (mnemonic, operands) of an object file (addresses as callgrind gives them:
+    file-relative for position-independent objects)."""
+    if obj in _disassembly:
+        return _disassembly[obj]
+    table = {}
+    if os.path.exists(obj):
+        text = subprocess.run(["objdump", "-d", "-M", "intel", "--no-show-raw-insn", "-w", obj],
+                              capture_output=True, text=True, check=False).stdout
+        for line in text.splitlines():
+            m = re.match(r"\s*([0-9a-f]+):\s+(\S+)\s*(.*)$", line)
+            if m:
+                mnem = m.group(2)
+                ops = m.group(3)
+                if mnem in ("rep", "repz", "repnz", "lock", "bnd", "notrack", "data16") and ops:
+                    mnem, _, ops = ops.partition(" ")
+                table[int(m.group(1), 16)] = (mnem, ops)
+    _disassembly[obj] = table
+    return table
+
+
+LIBM_CALLS = ("pow", "log", "exp", "cbrt", "floor", "ceil", "sqrt", "atan2", "sin", "cos", "tanh", "fmod")
+
+
+def callee_label(fn_name):
+    base = fn_name.split("@")[0].strip()
+    return base if base in LIBM_CALLS else None
+
+
+def measure_work(events, self_counts, edges):
+    """Per phase: instructions, flops, divisions, roots, the bytes from beyond the simulated L2
+    (`far bytes`, the 64-byte lines of its read and write misses), and libm calls by name."""
+    far = [events.index(e) for e in ("DLmr", "DLmw") if e in events]
+    # Each function's own totals.
+    own = {}
+    for (ob, fn), addrs in self_counts.items():
+        table = disassembly(ob)
+        t = collections.Counter()
+        for addr, counts in addrs.items():
+            count = counts[0]
+            t["instructions"] += count
+            t["far bytes"] += 64 * sum(counts[k] for k in far)
+            ins = table.get(addr)
+            if ins is None:
+                continue
+            f, d, r = classify(*ins)
+            t["flops"] += f * count
+            t["divisions"] += d * count
+            t["roots"] += r * count
+        own[(ob, fn)] = t
+
+    callers = collections.defaultdict(list)  # callee -> [(caller, inclusive Ir)]
+    for (caller, callee), (calls, incl) in edges.items():
+        if caller != callee:
+            callers[callee].append((caller, incl, calls))
+
+    share = {}
+
+    def distribution(node, depth=0):
+        """A function's phases, as fractions."""
+        if node in share:
+            return share[node]
+        p = phase_of(node[1] or "")
+        if p is not None:
+            share[node] = {p: 1.0}
+            return share[node]
+        if depth > 60:
+            return {"other": 1.0}
+        share[node] = {"other": 1.0}  # a cycle's guard
+        total = collections.Counter()
+        weight = 0.0
+        for caller, incl, _ in callers.get(node, []):
+            w = float(incl)
+            if w <= 0:
+                continue
+            for ph, fr in distribution(caller, depth + 1).items():
+                total[ph] += w * fr
+            weight += w
+        share[node] = {ph: v / weight for ph, v in total.items()} if weight > 0 else {"other": 1.0}
+        return share[node]
+
+    per_phase = collections.defaultdict(collections.Counter)
+    for node, t in own.items():
+        for ph, fr in distribution(node).items():
+            for k, v in t.items():
+                per_phase[ph][k] += v * fr
+    # Calls into libm, by name, from the phase of the caller.
+    for (caller, callee), (calls, _) in edges.items():
+        label = callee_label(callee[1] or "")
+        if label is None or "libm" not in (callee[0] or ""):
+            continue
+        if "libm" in (caller[0] or ""):
+            continue  # libm's own internal calls
+        for ph, fr in distribution(caller).items():
+            per_phase[ph]["call " + label] += calls * fr
+    return per_phase
+
+
+def cache_args():
+    """callgrind's simulated caches set to this machine's L1 data cache and L2 (the simulated
+    last level), from sysfs: a miss there is a line the L3 or memory delivers."""
+    args = []
+    base = "/sys/devices/system/cpu/cpu0/cache"
+    try:
+        for index in sorted(i for i in os.listdir(base) if i.startswith("index")):
+            d = os.path.join(base, index)
+            read = lambda f: open(os.path.join(d, f)).read().strip()
+            level, kind = read("level"), read("type")
+            size = int(read("size").rstrip("K")) * 1024
+            ways, line = int(read("ways_of_associativity")), int(read("coherency_line_size"))
+            if level == "1" and kind == "Data":
+                args.append(f"--D1={size},{ways},{line}")
+            elif level == "2":
+                args.append(f"--LL={size},{ways},{line}")
+    except (OSError, ValueError):
+        return []
+    return args
+
+
+def callgrind(bench, scene, steps, cell, workdir):
+    out = os.path.join(workdir, f"cg_{scene}_{steps}.out")
+    subprocess.run(["valgrind", "--tool=callgrind", "--dump-instr=yes", "--cache-sim=yes", *cache_args(),
+                    f"--callgrind-out-file={out}", bench, "--scene", scene, "--threads", "1", "--cell", str(cell), "--steps", str(steps),
+                    "--repeats", "1"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return parse_callgrind(out)
+
+
+def timed(bench, scene, steps, cell, runs):
+    """ns per particle-update per phase: the median over runs of share x step time."""
+    shares = collections.defaultdict(list)
+    totals = []
+    particles = None
+    for _ in range(runs):
+        r = subprocess.run([bench, "--scene", scene, "--threads", "1", "--cell", str(cell), "--steps", str(steps),
+                            "--repeats", "1", "--phases", "1"], capture_output=True, text=True, check=True)
+        m = re.search(r"phases \(share of ([0-9.]+) s\): (.*)", r.stderr)
+        row = r.stdout.strip().splitlines()[-1].split(",")
+        particles, wall = int(row[3]), float(row[7])
+        per_update = wall / (particles * steps) * 1e9
+        totals.append(per_update)
+        for item in m.group(2).split(","):
+            k, v = item.split()
+            shares[k].append(float(v) * per_update)
+    return particles, statistics.median(totals), {k: statistics.median(v) for k, v in shares.items()}
+
+
+def ceilings(path):
+    text = open(path).read()
+    row = re.search(r"^\|\s*1\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|", text, re.M)
+    calls = dict(re.findall(r"(division|square root|pow|log) ([0-9.]+)", text))
+    return {"scalar": float(row.group(1)), "vector": float(row.group(2)), "triad": float(row.group(3)),
+            "division": float(calls["division"]), "root": float(calls["square root"]),
+            "pow": float(calls["pow"]), "log": float(calls["log"])}
+
+
+def self_test():
+    """The classifier and the parser on known input; exits non-zero on a mismatch."""
+    cases = [
+        (("addsd", "xmm0,QWORD PTR [rax+0x8]"), (1, 0, 0)),
+        (("mulpd", "xmm1,xmm2"), (2, 0, 0)),
+        (("vfmadd231pd", "ymm0,ymm1,YMMWORD PTR [rdx]"), (8, 0, 0)),
+        (("vfnmadd132sd", "xmm0,xmm1,xmm2"), (2, 0, 0)),
+        (("divpd", "xmm0,xmm3"), (0, 2, 0)),
+        (("sqrtsd", "xmm0,xmm0"), (0, 0, 1)),
+        (("vdivsd", "xmm0,xmm1,QWORD PTR [rax]"), (0, 1, 0)),
+        (("movapd", "XMMWORD PTR [rsp+0x10],xmm4"), (0, 0, 0)),
+        (("maxsd", "xmm0,xmm1"), (0, 0, 0)),
+        (("addpd", "zmm0,zmm1"), (8, 0, 0)),
+    ]
+    bad = [(ins, classify(*ins), want) for ins, want in cases if classify(*ins) != want]
+    text = """version: 1
+positions: instr line
+events: Ir DLmr DLmw
+ob=(1) /nonexistent/a.out
+fn=(1) gimlet::solver<x>::compute_stencils() [clone ._omp_fn.0]
+0x100 0 5 1 0
++4 * 5 0 1
+cob=(2) /nonexistent/libm.so.6
+cfn=(2) pow
+calls=3 0x50 0
++2 * 90
+fn=(3) main
+0x200 0 1
+"""
+    with tempfile.NamedTemporaryFile("w", suffix=".out", delete=False) as f:
+        f.write(text)
+    try:
+        events, own, edges = parse_callgrind(f.name)
+    finally:
+        os.unlink(f.name)
+    stencil = ("/nonexistent/a.out", "gimlet::solver<x>::compute_stencils() [clone ._omp_fn.0]")
+    checks = [
+        (events, ["Ir", "DLmr", "DLmw"]),
+        (own[stencil], {0x100: [5, 1, 0], 0x104: [5, 0, 1]}),
+        (dict(edges), {(stencil, ("/nonexistent/libm.so.6", "pow")): [3, 90]}),
+        (phase_of(stencil[1]), "P2G"),
+        (phase_of("gimlet::solver<a<b>>::grid_to_particles_pass<false>(double, bool)::{lambda(unsigned long)#2}"), "G2P"),
+        (phase_of("pow"), None),
+    ]
+    bad += [(got, want) for got, want in checks if got != want]
+    for b in bad:
+        print("roofline.py self-test: mismatch", b, file=sys.stderr)
+    print("roofline.py self-test:", "failed" if bad else f"{len(cases) + len(checks)} checks pass")
+    return 1 if bad else 0
+
+
+def main():
+    if sys.argv[1:] == ["--self-test"]:
+        sys.exit(self_test())
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("bench")
+    ap.add_argument("ceilings")
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--steps", type=int, default=300)
+    ap.add_argument("--short", type=int, default=3)
+    ap.add_argument("--long", type=int, default=13)
+    ap.add_argument("--cell", type=float, default=0.5)
+    ap.add_argument("--scenes", default="reference,hmx")
+    a = ap.parse_args()
+    c = ceilings(a.ceilings)
+    print(f"ceilings (one thread, {os.path.basename(a.ceilings)}): scalar {c['scalar']} and SSE2 {c['vector']} GFLOP/s, "
+          f"triad 22 MB {c['triad']} GB/s; division {c['division']} ns, root {c['root']} ns, "
+          f"pow {c['pow']} ns, log {c['log']} ns")
+    print()
+    print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
+          "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
+          "| time / scalar-flops bound |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    with tempfile.TemporaryDirectory() as work:
+        for scene in a.scenes.split(","):
+            particles, step_ns, times = timed(a.bench, scene, a.steps, a.cell, a.runs)
+            short = measure_work(*callgrind(a.bench, scene, a.short, a.cell, work))
+            long_ = measure_work(*callgrind(a.bench, scene, a.long, a.cell, work))
+            updates = particles * (a.long - a.short)
+            rows = [ph for ph, _ in PHASES] + ["other"]
+            sums = collections.Counter()
+            for ph in rows + ["step"]:
+                if ph == "step":
+                    w = sums
+                    t = step_ns
+                else:
+                    w = collections.Counter({k: (long_[ph][k] - short[ph][k]) / updates
+                                             for k in set(long_[ph]) | set(short[ph])})
+                    t = times.get(ph) if ph != "other" else None
+                    sums.update(w)
+                    if ph == "other" and w["instructions"] < 1:
+                        continue
+                calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
+                resources = {
+                    "flops": w["flops"] / c["vector"],
+                    "bytes": w["far bytes"] / c["triad"],
+                    "divider": w["divisions"] * c["division"] + w["roots"] * c["root"],
+                }
+                bound_by = max(resources, key=resources.get)
+                bound = resources[bound_by]
+                scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
+                call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
+                if t is None:
+                    time_text = gf = gb = ratio = sratio = "–"
+                else:
+                    time_text = f"{t:.1f}"
+                    gflops = w["flops"] / t if t > 0 else 0.0
+                    gf = f"{gflops:.2f} ({100 * gflops / c['scalar']:.0f} %, {100 * gflops / c['vector']:.0f} %)"
+                    gbs = w["far bytes"] / t if t > 0 else 0.0
+                    gb = f"{gbs:.1f} ({100 * gbs / c['triad']:.0f} %)"
+                    ratio = f"{t / bound:.1f} ({bound_by})" if bound > 0 else "–"
+                    sratio = f"{t / scalar_bound:.1f}" if scalar_bound > 0 else "–"
+                name = "**the step**" if ph == "step" else ph
+                print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {w['instructions']:.0f} | {w['flops']:.0f} "
+                      f"| {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} | {w['far bytes']:.0f} | {gf} | {gb} "
+                      f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} |")
+            sys.stdout.flush()
+    print()
+    print("time: solver::timings()' share times the step's wall time per particle-update (median of "
+          f"{a.runs} runs of {a.steps} steps); work: callgrind, {a.long} steps less {a.short}, per particle-update; "
+          "bound: the largest of flops at the SSE2 ceiling, bytes at the 22 MB triad, divisions and roots at "
+          "their throughput; `other`: code no phase owns (the step's own serial work, the clock).")
+
+
+if __name__ == "__main__":
+    main()
