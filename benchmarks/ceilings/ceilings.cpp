@@ -10,6 +10,8 @@
 //     of the two is reported);
 //   - one at a time, with independent inputs: a division, a square root, std::pow and std::log
 //     (what the material update calls), in ns each;
+//   - the clock: a chain of dependent integer additions (x86-64 assembly), one per cycle, so
+//     that the per-phase table can give each phase's instructions per cycle;
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
@@ -119,6 +121,35 @@ CEILINGS_SCALAR double per_call(F f, int count, double& sink) {
     return best;
 }
 
+// The core's clock in GHz, one thread, best of 5: a chain of dependent integer additions, one
+// per cycle (12 per iteration; the loop's decrement and branch run beside the chain). 0 where
+// there is no x86-64 assembly.
+double clock_ghz(long iterations) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    double best = 0;
+    for (int rep = 0; rep < 5; ++rep) {
+        long n = iterations;
+        long x = 0;
+        const long step = 1;  // a register operand: some cores fold additions of an immediate at rename
+        const double t0 = now();
+        asm volatile(
+            "1:\n\t"
+            "add %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\t"
+            "add %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\t"
+            "add %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\tadd %2, %1\n\t"
+            "dec %0\n\tjnz 1b\n\t"
+            : "+r"(n), "+r"(x)
+            : "r"(step)
+            : "cc");
+        best = std::max(best, 12.0 * double(iterations) / (now() - t0) / 1e9);
+    }
+    return best;
+#else
+    (void)iterations;
+    return 0;
+#endif
+}
+
 // GB/s of the triad over three arrays of mb / 3 megabytes each on `threads` threads, best of 5.
 double triad(double mb, [[maybe_unused]] int threads, double seconds) {
     const auto n = std::size_t(mb * 1e6 / 3 / 8);
@@ -172,6 +203,7 @@ int main(int argc, char** argv) try {
                 per_call([](double x) { return std::sqrt(x); }, calls, sink),
                 per_call([](double x) { return std::pow(x, -1.1); }, calls, sink),
                 per_call([](double x) { return std::log(x); }, calls, sink));
+    std::printf("\nclock (a chain of dependent integer additions, one per cycle): %.2f GHz\n", clock_ghz(iterations / 4));
     if (sink == 42.0) std::printf("\n");  // keeps the chains' results alive
     return 0;
 } catch (const std::exception& e) {

@@ -22,8 +22,11 @@ square root, pow and log, each at its throughput (one at a time, independent inp
 A phase's bound is the largest of its resources' times: flops at the SSE2 ceiling (the portable
 build's vector width), bytes at the 22 MB triad, divisions and roots at their throughput (one
 divider: they do not overlap each other). The table also gives the bound with flops at the
-scalar ceiling, what code one particle at a time can reach. Calls into libm count as their own
-instructions, flops and divisions included (their costs above are printed for reference).
+scalar ceiling, what code one particle at a time can reach, and the phase's instructions per
+ns and per cycle (bench_ceilings' clock): a phase that retires instructions at a rate near the
+core's width is bound by how many it executes, not by a latency or a stall. Calls into libm
+count as their own instructions, flops and divisions included (their costs above are printed
+for reference).
 
 Attribution: each function callgrind saw is given to a phase by its name (the solver member a
 lambda or an OpenMP region belongs to, table PHASES below); a function no pattern names (a
@@ -344,9 +347,11 @@ def ceilings(path):
     text = open(path).read()
     row = re.search(r"^\|\s*1\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|", text, re.M)
     calls = dict(re.findall(r"(division|square root|pow|log) ([0-9.]+)", text))
+    clock = re.search(r"clock .*: ([0-9.]+) GHz", text)
     return {"scalar": float(row.group(1)), "vector": float(row.group(2)), "triad": float(row.group(3)),
             "division": float(calls["division"]), "root": float(calls["square root"]),
-            "pow": float(calls["pow"]), "log": float(calls["log"])}
+            "pow": float(calls["pow"]), "log": float(calls["log"]),
+            "clock": float(clock.group(1)) if clock and float(clock.group(1)) > 0 else None}
 
 
 def self_test():
@@ -416,12 +421,13 @@ def main():
     c = ceilings(a.ceilings)
     print(f"ceilings (one thread, {os.path.basename(a.ceilings)}): scalar {c['scalar']} and SSE2 {c['vector']} GFLOP/s, "
           f"triad 22 MB {c['triad']} GB/s; division {c['division']} ns, root {c['root']} ns, "
-          f"pow {c['pow']} ns, log {c['log']} ns")
+          f"pow {c['pow']} ns, log {c['log']} ns; " +
+          (f"clock {c['clock']} GHz" if c["clock"] else "no clock measured"))
     print()
     print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
           "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
-          "| time / scalar-flops bound |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "| time / scalar-flops bound | instructions per ns (per cycle) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     with tempfile.TemporaryDirectory() as work:
         for scene in a.scenes.split(","):
             particles, step_ns, times = timed(a.bench, scene, a.steps, a.cell, a.runs)
@@ -452,7 +458,7 @@ def main():
                 scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
                 call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
                 if t is None:
-                    time_text = gf = gb = ratio = sratio = "–"
+                    time_text = gf = gb = ratio = sratio = ipc = "–"
                 else:
                     time_text = f"{t:.1f}"
                     gflops = w["flops"] / t if t > 0 else 0.0
@@ -461,10 +467,13 @@ def main():
                     gb = f"{gbs:.1f} ({100 * gbs / c['triad']:.0f} %)"
                     ratio = f"{t / bound:.1f} ({bound_by})" if bound > 0 else "–"
                     sratio = f"{t / scalar_bound:.1f}" if scalar_bound > 0 else "–"
+                    rate = w["instructions"] / t if t > 0 else 0.0
+                    ipc = f"{rate:.1f}" + (f" ({rate / c['clock']:.1f})" if c["clock"] else "")
                 name = "**the step**" if ph == "step" else ph
                 print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {w['instructions']:.0f} | {w['flops']:.0f} "
                       f"| {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} | {w['far bytes']:.0f} | {gf} | {gb} "
-                      f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} |")
+                      f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} "
+                      f"| {ipc} |")
             sys.stdout.flush()
     print()
     print("time: solver::timings()' share times the step's wall time per particle-update (median of "
