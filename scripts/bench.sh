@@ -52,7 +52,7 @@ if [ "$quick" = 1 ]; then
     acc_args=(--quick 1)
     ceil_args=(--quick 1)
     lanes_args=(--repeats 1 --cell 2)
-    roof_args=(--runs 1 --steps 5 --short 1 --long 2 --cell 2)
+    roof_args=(--runs 1 --steps 5 --short 1 --long 2 --cell 2 --quick)
 else
     ref_args=(--cell 0.5 --steps 1000 --repeats 3)
     sizes=(2 1 0.5 0.25 0.125)
@@ -90,7 +90,7 @@ done | tee "$out/phases.txt"
 load "throughput end / roofline start"
 # The per-phase roofline (docs/performance.md, "What bounds each phase"): each phase's time
 # (solver::timings()) against its work (callgrind's counts) and this run's ceilings.
-python3 benchmarks/roofline/roofline.py "$bin/throughput/bench_throughput" "$out/ceilings.md" "${roof_args[@]}" \
+python3 benchmarks/roofline/roofline.py "$bin/throughput/bench_throughput" "$bin/ceilings/bench_ceilings" "${roof_args[@]}" \
     | tee "$out/roofline.md"
 load "roofline end / scaling start"
 

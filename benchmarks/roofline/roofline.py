@@ -15,9 +15,10 @@ it measures, per particle-update and per phase of solver::timings():
             simulated caches, set to this machine's L1 data cache and L2). Two runs of --short
             and --long steps are subtracted, so setting up the scene cancels.
 
-and sets them against the machine's ceilings, read from bench_ceilings' table (ceilings.md):
-the scalar and SSE2 multiply-add throughput, the 22 MB triad, and the cost of a division, a
-square root, pow and log, each at its throughput (one at a time, independent inputs).
+and sets them against the machine's ceilings, which bench_ceilings measures just before each
+scene's timed runs (a shared machine's speed drifts over minutes): the scalar and SSE2
+multiply-add throughput, the 22 MB triad, the cost of a division, a square root, pow and log,
+each at its throughput (one at a time, independent inputs), and the clock.
 
 A phase's bound is the largest of its resources' times: flops at the SSE2 ceiling (the portable
 build's vector width), bytes at the 22 MB triad, divisions and roots at their throughput (one
@@ -33,7 +34,7 @@ lambda or an OpenMP region belongs to, table PHASES below); a function no patter
 helper, libm) is shared out among its callers in proportion to the instructions each call
 costs. What no phase owns is reported as `other`.
 
-    roofline.py BENCH_THROUGHPUT CEILINGS_MD [--runs 3] [--steps 300] [--short 3] [--long 13]
+    roofline.py BENCH_THROUGHPUT BENCH_CEILINGS [--runs 3] [--steps 300] [--short 3] [--long 13]
     roofline.py --self-test     checks the classifier and the parser on known input
 """
 import argparse
@@ -343,8 +344,10 @@ def timed(bench, scene, steps, cell, runs):
     return particles, statistics.median(totals), {k: statistics.median(v) for k, v in shares.items()}
 
 
-def ceilings(path):
-    text = open(path).read()
+def ceilings(bench_ceilings, quick):
+    """bench_ceilings' one-thread figures, measured now."""
+    text = subprocess.run([bench_ceilings, "--threads", "1", "--quick", "1" if quick else "0"],
+                          capture_output=True, text=True, check=True).stdout
     row = re.search(r"^\|\s*1\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|", text, re.M)
     calls = dict(re.findall(r"(division|square root|pow|log) ([0-9.]+)", text))
     clock = re.search(r"clock .*: ([0-9.]+) GHz", text)
@@ -410,27 +413,28 @@ def main():
         sys.exit(self_test())
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("bench")
-    ap.add_argument("ceilings")
+    ap.add_argument("ceilings", help="the bench_ceilings binary, run just before each scene's timed runs")
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--steps", type=int, default=300)
     ap.add_argument("--short", type=int, default=3)
     ap.add_argument("--long", type=int, default=13)
     ap.add_argument("--cell", type=float, default=0.5)
     ap.add_argument("--scenes", default="reference,hmx")
+    ap.add_argument("--quick", action="store_true", help="bench_ceilings' smoke run (its numbers meaningless)")
     a = ap.parse_args()
-    c = ceilings(a.ceilings)
-    print(f"ceilings (one thread, {os.path.basename(a.ceilings)}): scalar {c['scalar']} and SSE2 {c['vector']} GFLOP/s, "
-          f"triad 22 MB {c['triad']} GB/s; division {c['division']} ns, root {c['root']} ns, "
-          f"pow {c['pow']} ns, log {c['log']} ns; " +
-          (f"clock {c['clock']} GHz" if c["clock"] else "no clock measured"))
-    print()
+    notes = []
     print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
           "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
           "| time / scalar-flops bound | instructions per ns (per cycle) |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     with tempfile.TemporaryDirectory() as work:
         for scene in a.scenes.split(","):
+            c = ceilings(a.ceilings, a.quick)
             particles, step_ns, times = timed(a.bench, scene, a.steps, a.cell, a.runs)
+            notes.append(f"{SCENE_NAMES.get(scene, scene)}: scalar {c['scalar']} and SSE2 {c['vector']} GFLOP/s, "
+                         f"triad 22 MB {c['triad']} GB/s, division {c['division']} ns, root {c['root']} ns, "
+                         f"pow {c['pow']} ns, log {c['log']} ns, " +
+                         (f"clock {c['clock']} GHz" if c["clock"] else "no clock measured"))
             short = measure_work(*callgrind(a.bench, scene, a.short, a.cell, work))
             long_ = measure_work(*callgrind(a.bench, scene, a.long, a.cell, work))
             updates = particles * (a.long - a.short)
@@ -475,6 +479,10 @@ def main():
                       f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} "
                       f"| {ipc} |")
             sys.stdout.flush()
+    print()
+    print("ceilings (bench_ceilings, one thread, measured just before each scene's timed runs):")
+    for n in notes:
+        print(f"- {n}")
     print()
     print("time: solver::timings()' share times the step's wall time per particle-update (median of "
           f"{a.runs} runs of {a.steps} steps); work: callgrind, {a.long} steps less {a.short}, per particle-update; "
