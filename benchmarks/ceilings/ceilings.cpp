@@ -11,7 +11,8 @@
 //   - one at a time, with independent inputs: a division, a square root, std::pow and std::log
 //     (what the material update calls), in ns each;
 //   - the clock: a chain of dependent integer additions (x86-64 assembly), one per cycle, so
-//     that the per-phase table can give each phase's instructions per cycle;
+//     that the per-phase table can give each phase's instructions per cycle; and the rate of
+//     independent register additions, what the core issues of the simplest instructions;
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
@@ -150,6 +151,35 @@ double clock_ghz(long iterations) {
 #endif
 }
 
+// Instructions per ns of independent register additions, one thread, best of 5: 12 chains on
+// 12 registers plus the loop's decrement and branch, 14 instructions per iteration. What the
+// core issues of the simplest instructions at the moment (a busy sibling thread on the same
+// core lowers it). 0 where there is no x86-64 assembly.
+double addition_rate(long iterations) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    double best = 0;
+    for (int rep = 0; rep < 5; ++rep) {
+        long n = iterations;
+        const long step = 1;
+        const double t0 = now();
+        asm volatile(
+            "1:\n\t"
+            "add %1, %%rax\n\tadd %1, %%rbx\n\tadd %1, %%rcx\n\tadd %1, %%rdx\n\t"
+            "add %1, %%rsi\n\tadd %1, %%rdi\n\tadd %1, %%r8\n\tadd %1, %%r9\n\t"
+            "add %1, %%r10\n\tadd %1, %%r11\n\tadd %1, %%r12\n\tadd %1, %%r13\n\t"
+            "dec %0\n\tjnz 1b\n\t"
+            : "+r"(n)
+            : "r"(step)
+            : "rax", "rbx", "rcx", "rdx", "rsi", "rdi", "r8", "r9", "r10", "r11", "r12", "r13", "cc");
+        best = std::max(best, 14.0 * double(iterations) / (now() - t0) / 1e9);
+    }
+    return best;
+#else
+    (void)iterations;
+    return 0;
+#endif
+}
+
 // GB/s of the triad over three arrays of mb / 3 megabytes each on `threads` threads, best of 5.
 double triad(double mb, [[maybe_unused]] int threads, double seconds) {
     const auto n = std::size_t(mb * 1e6 / 3 / 8);
@@ -204,6 +234,7 @@ int main(int argc, char** argv) try {
                 per_call([](double x) { return std::pow(x, -1.1); }, calls, sink),
                 per_call([](double x) { return std::log(x); }, calls, sink));
     std::printf("\nclock (a chain of dependent integer additions, one per cycle): %.2f GHz\n", clock_ghz(iterations / 4));
+    std::printf("independent register additions: %.2f instructions per ns\n", addition_rate(iterations / 4));
     if (sink == 42.0) std::printf("\n");  // keeps the chains' results alive
     return 0;
 } catch (const std::exception& e) {

@@ -15,8 +15,9 @@ it measures, per particle-update and per phase of solver::timings():
             simulated caches, set to this machine's L1 data cache and L2). Two runs of --short
             and --long steps are subtracted, so setting up the scene cancels.
 
-and sets them against the machine's ceilings, which bench_ceilings measures just before each
-scene's timed runs (a shared machine's speed drifts over minutes): the scalar and SSE2
+and sets them against the machine's ceilings, which bench_ceilings measures just before and
+just after each scene's timed runs, their mean taken (a shared machine's speed drifts over
+minutes): the scalar and SSE2
 multiply-add throughput, the 22 MB triad, the cost of a division, a square root, pow and log,
 each at its throughput (one at a time, independent inputs), and the clock.
 
@@ -24,8 +25,10 @@ A phase's bound is the largest of its resources' times: flops at the SSE2 ceilin
 build's vector width), bytes at the 22 MB triad, divisions and roots at their throughput (one
 divider: they do not overlap each other). The table also gives the bound with flops at the
 scalar ceiling, what code one particle at a time can reach, and the phase's instructions per
-ns and per cycle (bench_ceilings' clock): a phase that retires instructions at a rate near the
-core's width is bound by how many it executes, not by a latency or a stall. Calls into libm
+ns, per cycle (bench_ceilings' clock) and as a share of the rate at which the core issues
+independent register additions at that moment (bench_ceilings; a busy sibling thread on the
+same core lowers both): a phase near that rate is bound by how many instructions it executes,
+not by a latency or a stall. Calls into libm
 count as their own instructions, flops and divisions included (their costs above are printed
 for reference).
 
@@ -351,10 +354,12 @@ def ceilings(bench_ceilings, quick):
     row = re.search(r"^\|\s*1\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|", text, re.M)
     calls = dict(re.findall(r"(division|square root|pow|log) ([0-9.]+)", text))
     clock = re.search(r"clock .*: ([0-9.]+) GHz", text)
+    adds = re.search(r"independent register additions: ([0-9.]+) instructions per ns", text)
     return {"scalar": float(row.group(1)), "vector": float(row.group(2)), "triad": float(row.group(3)),
             "division": float(calls["division"]), "root": float(calls["square root"]),
             "pow": float(calls["pow"]), "log": float(calls["log"]),
-            "clock": float(clock.group(1)) if clock and float(clock.group(1)) > 0 else None}
+            "clock": float(clock.group(1)) if clock and float(clock.group(1)) > 0 else None,
+            "adds": float(adds.group(1)) if adds and float(adds.group(1)) > 0 else None}
 
 
 def self_test():
@@ -413,7 +418,7 @@ def main():
         sys.exit(self_test())
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("bench")
-    ap.add_argument("ceilings", help="the bench_ceilings binary, run just before each scene's timed runs")
+    ap.add_argument("ceilings", help="the bench_ceilings binary, run just before and after each scene's timed runs")
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--steps", type=int, default=300)
     ap.add_argument("--short", type=int, default=3)
@@ -425,16 +430,21 @@ def main():
     notes = []
     print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
           "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
-          "| time / scalar-flops bound | instructions per ns (per cycle) |")
+          "| time / scalar-flops bound | instructions per ns (per cycle; share of the additions' rate) |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     with tempfile.TemporaryDirectory() as work:
         for scene in a.scenes.split(","):
-            c = ceilings(a.ceilings, a.quick)
+            before = ceilings(a.ceilings, a.quick)
             particles, step_ns, times = timed(a.bench, scene, a.steps, a.cell, a.runs)
-            notes.append(f"{SCENE_NAMES.get(scene, scene)}: scalar {c['scalar']} and SSE2 {c['vector']} GFLOP/s, "
-                         f"triad 22 MB {c['triad']} GB/s, division {c['division']} ns, root {c['root']} ns, "
-                         f"pow {c['pow']} ns, log {c['log']} ns, " +
-                         (f"clock {c['clock']} GHz" if c["clock"] else "no clock measured"))
+            after = ceilings(a.ceilings, a.quick)
+            # The mean of the two readings; the notes give both.
+            c = {k: (before[k] + after[k]) / 2 if before[k] and after[k] else None for k in before}
+            both = lambda k: f"{before[k]}/{after[k]}"
+            notes.append(f"{SCENE_NAMES.get(scene, scene)} (before/after its timed runs): scalar {both('scalar')} "
+                         f"and SSE2 {both('vector')} GFLOP/s, triad 22 MB {both('triad')} GB/s, division "
+                         f"{both('division')} ns, root {both('root')} ns, pow {both('pow')} ns, log {both('log')} ns"
+                         + (f", clock {both('clock')} GHz" if c["clock"] else ", no clock measured")
+                         + (f", independent register additions {both('adds')} instructions per ns" if c["adds"] else ""))
             short = measure_work(*callgrind(a.bench, scene, a.short, a.cell, work))
             long_ = measure_work(*callgrind(a.bench, scene, a.long, a.cell, work))
             updates = particles * (a.long - a.short)
@@ -472,7 +482,9 @@ def main():
                     ratio = f"{t / bound:.1f} ({bound_by})" if bound > 0 else "–"
                     sratio = f"{t / scalar_bound:.1f}" if scalar_bound > 0 else "–"
                     rate = w["instructions"] / t if t > 0 else 0.0
-                    ipc = f"{rate:.1f}" + (f" ({rate / c['clock']:.1f})" if c["clock"] else "")
+                    parts = ([f"{rate / c['clock']:.1f}"] if c["clock"] else []) + \
+                        ([f"{100 * rate / c['adds']:.0f} %"] if c["adds"] else [])
+                    ipc = f"{rate:.1f}" + (f" ({'; '.join(parts)})" if parts else "")
                 name = "**the step**" if ph == "step" else ph
                 print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {w['instructions']:.0f} | {w['flops']:.0f} "
                       f"| {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} | {w['far bytes']:.0f} | {gf} | {gb} "
@@ -480,7 +492,8 @@ def main():
                       f"| {ipc} |")
             sys.stdout.flush()
     print()
-    print("ceilings (bench_ceilings, one thread, measured just before each scene's timed runs):")
+    print("ceilings (bench_ceilings, one thread, measured just before and just after each scene's timed runs; "
+          "the table uses their mean):")
     for n in notes:
         print(f"- {n}")
     print()
