@@ -21,9 +21,10 @@ minutes): the scalar and SSE2
 multiply-add throughput, the 22 MB triad, the cost of a division, a square root, pow and log,
 each at its throughput (one at a time, independent inputs), and the clock.
 
-A phase's bound is the largest of its resources' times: flops at the SSE2 ceiling (the portable
-build's vector width), bytes at the 22 MB triad, divisions and roots at their throughput (one
-divider: they do not overlap each other). The table also gives the bound with flops at the
+A phase's bound is the largest of its resources' times: flops at the vector ceiling (the vector
+width bench_ceilings was built for: SSE2 in the portable `bench` build), bytes at the 22 MB
+triad, divisions and roots at their throughput (one divider: they do not overlap each other; a
+packed division costs about what a scalar one does). The table also gives the bound with flops at the
 scalar ceiling, what code one particle at a time can reach, and the phase's instructions per
 ns, per cycle (bench_ceilings' clock) and as a share of the rate at which the core issues
 independent register additions at that moment (bench_ceilings; a busy sibling thread on the
@@ -55,7 +56,7 @@ PHASES = [
     ("P2G", r"compute_stencils?\b|::scatter\b|slab_schedule::bucket\b|\bbucket\(|::prepare\(|choose_fields|"
             r"clear_grid|find_light_particles|find_shared_nodes|average_mean_stress|self_contact::initialize"),
     ("grid", r"update_grid_momentum|consistent_mass"),
-    ("contact", r"resolve_contact"),
+    ("contact", r"resolve_contact|exchange::resolve\b|multi_field::correct\b"),
     ("G2P", r"grid_to_particles|nodal_velocity|apply_walls"),
     ("material", r"finish_step|material_pass|update_material_point|update_material_pair|velocity_gradient|"
                  r"filter_volumes|average_volumetric_rates|contact_hook|check_pending|count_health"),
@@ -78,10 +79,14 @@ def strip_templates(name):
 
 
 def phase_of(name):
-    s = strip_templates(name)
-    for phase, pattern in PHASES:
-        if re.search(pattern, s):
-            return phase
+    """The phase a function belongs to by its name: first without template arguments (so that a
+    policy's type named among them cannot decide), then, where that names none, with them (a
+    lambda that appears only as a template argument, e.g. for_each_kept<...::initialize(...)::
+    {lambda}>)."""
+    for s in (strip_templates(name), name):
+        for phase, pattern in PHASES:
+            if re.search(pattern, s):
+                return phase
     return None
 
 
@@ -250,6 +255,9 @@ def measure_work(events, self_counts, edges):
             t["flops"] += f * count
             t["divisions"] += d * count
             t["roots"] += r * count
+            # The divider's time: a packed division costs about what a scalar one does.
+            t["divider instructions"] += (d > 0) * count
+            t["root instructions"] += (r > 0) * count
         own[(ob, fn)] = t
 
     callers = collections.defaultdict(list)  # callee -> [(caller, inclusive Ir)]
@@ -301,23 +309,28 @@ def measure_work(events, self_counts, edges):
 
 def cache_args():
     """callgrind's simulated caches set to this machine's L1 data cache and L2 (the simulated
-    last level), from sysfs: a miss there is a line the L3 or memory delivers."""
-    args = []
+    last level), from sysfs: a miss there is a line the L3 or memory delivers. Stops with a
+    message where sysfs does not give both (valgrind's own defaults would make the bytes
+    column mean something else)."""
+    found = {}
     base = "/sys/devices/system/cpu/cpu0/cache"
+    units = {"K": 1024, "M": 1024 * 1024, "G": 1024 ** 3}
     try:
         for index in sorted(i for i in os.listdir(base) if i.startswith("index")):
             d = os.path.join(base, index)
             read = lambda f: open(os.path.join(d, f)).read().strip()
-            level, kind = read("level"), read("type")
-            size = int(read("size").rstrip("K")) * 1024
-            ways, line = int(read("ways_of_associativity")), int(read("coherency_line_size"))
+            level, kind, size = read("level"), read("type"), read("size")
+            size = int(size[:-1]) * units[size[-1]] if size[-1] in units else int(size)
+            geometry = f"{size},{read('ways_of_associativity')},{read('coherency_line_size')}"
             if level == "1" and kind == "Data":
-                args.append(f"--D1={size},{ways},{line}")
+                found["D1"] = geometry
             elif level == "2":
-                args.append(f"--LL={size},{ways},{line}")
-    except (OSError, ValueError):
-        return []
-    return args
+                found["LL"] = geometry
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"roofline.py: cannot read this machine's cache sizes from {base} ({e})")
+    if set(found) != {"D1", "LL"}:
+        sys.exit(f"roofline.py: {base} gives no {' and no '.join(sorted({'D1', 'LL'} - set(found)))} cache")
+    return [f"--D1={found['D1']}", f"--LL={found['LL']}"]
 
 
 def callgrind(bench, scene, steps, cell, workdir):
@@ -329,9 +342,9 @@ def callgrind(bench, scene, steps, cell, workdir):
 
 
 def timed(bench, scene, steps, cell, runs):
-    """ns per particle-update per phase: the median over runs of share x step time."""
-    shares = collections.defaultdict(list)
-    totals = []
+    """ns per particle-update, of the step and of each phase: the run with the median step time
+    and its phases' shares (so that the phases add up to the step)."""
+    results = []
     particles = None
     for _ in range(runs):
         r = subprocess.run([bench, "--scene", scene, "--threads", "1", "--cell", str(cell), "--steps", str(steps),
@@ -340,11 +353,14 @@ def timed(bench, scene, steps, cell, runs):
         row = r.stdout.strip().splitlines()[-1].split(",")
         particles, wall = int(row[3]), float(row[7])
         per_update = wall / (particles * steps) * 1e9
-        totals.append(per_update)
+        shares = {}
         for item in m.group(2).split(","):
             k, v = item.split()
-            shares[k].append(float(v) * per_update)
-    return particles, statistics.median(totals), {k: statistics.median(v) for k, v in shares.items()}
+            shares[k] = float(v) * per_update
+        results.append((per_update, shares))
+    results.sort(key=lambda t: t[0])
+    per_update, shares = results[(len(results) - 1) // 2]
+    return particles, per_update, shares
 
 
 def ceilings(bench_ceilings, quick):
@@ -353,6 +369,8 @@ def ceilings(bench_ceilings, quick):
                           capture_output=True, text=True, check=True).stdout
     row = re.search(r"^\|\s*1\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|\s*([0-9.]+)\s*\|", text, re.M)
     calls = dict(re.findall(r"(division|square root|pow|log) ([0-9.]+)", text))
+    if row is None or float(row.group(1)) <= 0 or float(row.group(2)) <= 0 or float(row.group(3)) <= 0:
+        sys.exit(f"roofline.py: {bench_ceilings} gave no usable one-thread ceilings:\n{text}")
     clock = re.search(r"clock .*: ([0-9.]+) GHz", text)
     adds = re.search(r"independent register additions: ([0-9.]+) instructions per ns", text)
     return {"scalar": float(row.group(1)), "vector": float(row.group(2)), "triad": float(row.group(3)),
@@ -388,8 +406,15 @@ cob=(2) /nonexistent/libm.so.6
 cfn=(2) pow
 calls=3 0x50 0
 +2 * 90
+-2 * 1
 fn=(3) main
 0x200 0 1
+fn=(1)
+0x100 0 2
+cob=(2)
+cfn=(2)
+calls=1 0x50 0
+0x108 0 30
 """
     with tempfile.NamedTemporaryFile("w", suffix=".out", delete=False) as f:
         f.write(text)
@@ -400,11 +425,15 @@ fn=(3) main
     stencil = ("/nonexistent/a.out", "gimlet::solver<x>::compute_stencils() [clone ._omp_fn.0]")
     checks = [
         (events, ["Ir", "DLmr", "DLmw"]),
-        (own[stencil], {0x100: [5, 1, 0], 0x104: [5, 0, 1]}),
-        (dict(edges), {(stencil, ("/nonexistent/libm.so.6", "pow")): [3, 90]}),
+        (own[stencil], {0x100: [7, 1, 0], 0x104: [6, 0, 1]}),
+        (own[("/nonexistent/a.out", "main")], {0x200: [1, 0, 0]}),
+        (dict(edges), {(stencil, ("/nonexistent/libm.so.6", "pow")): [4, 120]}),
         (phase_of(stencil[1]), "P2G"),
         (phase_of("gimlet::solver<a<b>>::grid_to_particles_pass<false>(double, bool)::{lambda(unsigned long)#2}"), "G2P"),
         (phase_of("pow"), None),
+        (phase_of("void gimlet::detail::slab_schedule<2>::for_each_kept<gimlet::multi_field::self_contact::"
+                  "initialize<V>(V&)::{lambda(unsigned long)#1}>(unsigned char const*, bool, int, V&&) const"), "P2G"),
+        (phase_of("void gimlet::multi_field::exchange::resolve<G>(G&)"), "contact"),
     ]
     bad += [(got, want) for got, want in checks if got != want]
     for b in bad:
@@ -465,7 +494,7 @@ def main():
                 resources = {
                     "flops": w["flops"] / c["vector"],
                     "bytes": w["far bytes"] / c["triad"],
-                    "divider": w["divisions"] * c["division"] + w["roots"] * c["root"],
+                    "divider": w["divider instructions"] * c["division"] + w["root instructions"] * c["root"],
                 }
                 bound_by = max(resources, key=resources.get)
                 bound = resources[bound_by]
@@ -500,7 +529,8 @@ def main():
     print("time: solver::timings()' share times the step's wall time per particle-update (median of "
           f"{a.runs} runs of {a.steps} steps); work: callgrind, {a.long} steps less {a.short}, per particle-update; "
           "bound: the largest of flops at the SSE2 ceiling, bytes at the 22 MB triad, divisions and roots at "
-          "their throughput; `other`: code no phase owns (the step's own serial work, the clock).")
+          "their throughput (a packed division or root as one); `other`: code no phase's pattern names, chiefly what the "
+          "compiler inlined into the benchmark's step loop (the step's own serial work, the clock).")
 
 
 if __name__ == "__main__":
