@@ -12,7 +12,7 @@
 //     (what the material update calls), in ns each;
 //   - the clock: a chain of dependent integer additions (x86-64 assembly), one per cycle, so
 //     that the per-phase table can give each phase's instructions per cycle; and the rate of
-//     independent register additions, what the core issues of the simplest instructions;
+//     independent register additions (a loop the integer units bound);
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
@@ -152,9 +152,10 @@ double clock_ghz(long iterations) {
 }
 
 // Instructions per ns of independent register additions, one thread, best of 5: 12 chains on
-// 12 registers plus the loop's decrement and branch, 14 instructions per iteration. What the
-// core issues of the simplest instructions at the moment (a busy sibling thread on the same
-// core lowers it). 0 where there is no x86-64 assembly.
+// 12 registers plus the loop's decrement and branch, 14 instructions per iteration (as
+// callgrind counts them). A loop the integer units bound, so not the most the core issues of
+// a mix; it moves with other work on the same physical core. 0 where there is no x86-64
+// assembly (the assembly is in AT&T syntax, the compilers' default).
 double addition_rate(long iterations) {
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
     double best = 0;
