@@ -39,6 +39,7 @@ helper, libm) is shared out among its callers in proportion to the instructions 
 costs. What no phase owns is reported as `other`.
 
     roofline.py BENCH_THROUGHPUT BENCH_CEILINGS [--runs 3] [--steps 300] [--short 3] [--long 13]
+    roofline.py BENCH_THROUGHPUT --work-only     the work per phase only: compares two builds exactly
     roofline.py --self-test     checks the classifier and the parser on known input
 """
 import argparse
@@ -334,11 +335,27 @@ def cache_args():
 
 
 def callgrind(bench, scene, steps, cell, workdir):
+    """The work of a run (measure_work's table) and its particle count."""
     out = os.path.join(workdir, f"cg_{scene}_{steps}.out")
-    subprocess.run(["valgrind", "--tool=callgrind", "--dump-instr=yes", "--cache-sim=yes", *cache_args(),
-                    f"--callgrind-out-file={out}", bench, "--scene", scene, "--threads", "1", "--cell", str(cell), "--steps", str(steps),
-                    "--repeats", "1"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return parse_callgrind(out)
+    r = subprocess.run(["valgrind", "--tool=callgrind", "--dump-instr=yes", "--cache-sim=yes", *cache_args(),
+                        f"--callgrind-out-file={out}", bench, "--scene", scene, "--threads", "1", "--cell", str(cell),
+                        "--steps", str(steps), "--repeats", "1"], check=True, capture_output=True, text=True)
+    particles = int(r.stdout.strip().splitlines()[-1].split(",")[3])
+    return measure_work(*parse_callgrind(out)), particles
+
+
+def work_per_update(bench, scene, cell, short, long_, workdir):
+    """Per phase, the work of one particle-update: a run of `long_` steps less one of `short`."""
+    (s, particles), (l, _) = (callgrind(bench, scene, n, cell, workdir) for n in (short, long_))
+    updates = particles * (long_ - short)
+    phases = [ph for ph, _ in PHASES] + ["other"]
+    return particles, {ph: collections.Counter({k: (l[ph][k] - s[ph][k]) / updates for k in set(l[ph]) | set(s[ph])})
+                       for ph in phases}
+
+
+def calls_text(w):
+    calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
+    return ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
 
 
 def timed(bench, scene, steps, cell, runs):
@@ -447,7 +464,8 @@ def main():
         sys.exit(self_test())
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("bench")
-    ap.add_argument("ceilings", help="the bench_ceilings binary, run just before and after each scene's timed runs")
+    ap.add_argument("ceilings", nargs="?", help="the bench_ceilings binary, run just before and after each scene's "
+                    "timed runs (not with --work-only)")
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--steps", type=int, default=300)
     ap.add_argument("--short", type=int, default=3)
@@ -455,7 +473,23 @@ def main():
     ap.add_argument("--cell", type=float, default=0.5)
     ap.add_argument("--scenes", default="reference,hmx")
     ap.add_argument("--quick", action="store_true", help="bench_ceilings' smoke run (its numbers meaningless)")
+    ap.add_argument("--work-only", action="store_true",
+                    help="only the work per particle-update (no timing, no ceilings): instruction counts do not "
+                         "drift with a shared machine's speed, so two builds compare exactly")
     a = ap.parse_args()
+    if a.work_only:
+        print("| scene | phase | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 |")
+        print("| --- | --- | --- | --- | --- | --- | --- |")
+        with tempfile.TemporaryDirectory() as work:
+            for scene in a.scenes.split(","):
+                _, table = work_per_update(a.bench, scene, a.cell, a.short, a.long, work)
+                table["**the step**"] = sum(table.values(), collections.Counter())
+                for ph, w in table.items():
+                    print(f"| {SCENE_NAMES.get(scene, scene)} | {ph} | {w['instructions']:.1f} | {w['flops']:.1f} "
+                          f"| {w['divisions']:.1f}, {w['roots']:.1f} | {calls_text(w)} | {w['far bytes']:.0f} |")
+        return
+    if a.ceilings is None:
+        ap.error("the bench_ceilings binary is needed (or --work-only)")
     notes = []
     print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
           "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
@@ -474,9 +508,8 @@ def main():
                          f"{both('division')} ns, root {both('root')} ns, pow {both('pow')} ns, log {both('log')} ns"
                          + (f", clock {both('clock')} GHz" if c["clock"] else ", no clock measured")
                          + (f", independent register additions {both('adds')} instructions per ns" if c["adds"] else ""))
-            short = measure_work(*callgrind(a.bench, scene, a.short, a.cell, work))
-            long_ = measure_work(*callgrind(a.bench, scene, a.long, a.cell, work))
-            updates = particles * (a.long - a.short)
+            particles_w, work_table = work_per_update(a.bench, scene, a.cell, a.short, a.long, work)
+            assert particles_w == particles
             rows = [ph for ph, _ in PHASES] + ["other"]
             sums = collections.Counter()
             for ph in rows + ["step"]:
@@ -484,13 +517,11 @@ def main():
                     w = sums
                     t = step_ns
                 else:
-                    w = collections.Counter({k: (long_[ph][k] - short[ph][k]) / updates
-                                             for k in set(long_[ph]) | set(short[ph])})
+                    w = work_table[ph]
                     t = times.get(ph) if ph != "other" else None
                     sums.update(w)
                     if ph == "other" and w["instructions"] < 1:
                         continue
-                calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
                 resources = {
                     "flops": w["flops"] / c["vector"],
                     "bytes": w["far bytes"] / c["triad"],
@@ -499,7 +530,7 @@ def main():
                 bound_by = max(resources, key=resources.get)
                 bound = resources[bound_by]
                 scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
-                call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
+                call_text = calls_text(w)
                 if t is None:
                     time_text = gf = gb = ratio = sratio = ipc = "–"
                 else:
