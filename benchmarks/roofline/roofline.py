@@ -5,38 +5,38 @@
 For each scene of bench_throughput (reference, hmx; one thread, 0.5 mm cells, 64,000 particles)
 it measures, per particle-update and per phase of solver::timings():
 
-  time      the phase's share of the step (solver::timings(), the median of --runs runs) times
-            the step's wall time per particle-update;
+  time      the phase's share of the step times the step's wall time per particle-update (the
+            run with the median step time of --runs runs, so that the phases add up);
   work      the instructions the phase executes, counted by valgrind's callgrind (--dump-instr)
-            and classified by disassembly (objdump -M intel): floating-point operations
-            (add, subtract, multiply: one per lane; a fused multiply-add two), divisions and
-            square roots (per lane), the calls into libm by name, and the bytes the L3 or
-            memory delivers (the 64-byte lines of the read and write misses of callgrind's
-            simulated caches, set to this machine's L1 data cache and L2). Two runs of --short
-            and --long steps are subtracted, so setting up the scene cancels.
+            and classified by disassembly (objdump -M intel): floating-point operations (add,
+            subtract, multiply: one per lane; a fused multiply-add two), divisions and square
+            roots (per lane), the calls into libm by name, and the bytes the L3 or memory
+            delivers (the 64-byte lines of the read and write misses of callgrind's simulated
+            caches, set to this machine's L1 data cache and L2; write-backs and prefetches not
+            counted). A run of --short steps is subtracted from one of --long steps, so setting
+            up the scene cancels.
 
 and sets them against the machine's ceilings, which bench_ceilings measures just before and
 just after each scene's timed runs, their mean taken (a shared machine's speed drifts over
-minutes): the scalar and SSE2
-multiply-add throughput, the 22 MB triad, the cost of a division, a square root, pow and log,
-each at its throughput (one at a time, independent inputs), and the clock.
+minutes): the scalar and vector multiply-add throughput, the 22 MB triad, the cost of a
+division, a square root, pow and log, each at its throughput (one at a time, independent
+inputs), the clock and the rate of independent register additions.
 
 A phase's bound is the largest of its resources' times: flops at the vector ceiling (the vector
 width bench_ceilings was built for: SSE2 in the portable `bench` build), bytes at the 22 MB
-triad, divisions and roots at their throughput (one divider: they do not overlap each other; a
-packed division costs about what a scalar one does). The table also gives the bound with flops at the
-scalar ceiling, what code one particle at a time can reach, and the phase's instructions per
-ns, per cycle (bench_ceilings' clock) and as a share of the rate at which the core issues
-independent register additions at that moment (bench_ceilings; a busy sibling thread on the
-same core lowers both): a phase near that rate is bound by how many instructions it executes,
-not by a latency or a stall. Calls into libm
-count as their own instructions, flops and divisions included (their costs above are printed
-for reference).
+triad, and the division and root instructions one after another at their throughput (one
+divider; a packed division costs about what a scalar one does). The table also gives the bound
+with flops at the scalar ceiling (what code one particle at a time can reach), and the phase's
+instructions per ns, per cycle (bench_ceilings' clock) and as a share of the rate of the
+independent additions measured beside it (a loop the integer units bound, not the most the core
+issues of a mix). Calls into libm count as their own instructions, flops and divisions included
+(their costs are printed for reference).
 
 Attribution: each function callgrind saw is given to a phase by its name (the solver member a
 lambda or an OpenMP region belongs to, table PHASES below); a function no pattern names (a
 helper, libm) is shared out among its callers in proportion to the instructions each call
-costs. What no phase owns is reported as `other`.
+costs. What no phase owns is reported as `other` (chiefly what the compiler inlined into the
+benchmark's own loop).
 
     roofline.py BENCH_THROUGHPUT BENCH_CEILINGS [--runs 3] [--steps 300] [--short 3] [--long 13]
     roofline.py BENCH_THROUGHPUT --work-only     the work per phase only: compares two builds exactly
@@ -46,7 +46,6 @@ import argparse
 import collections
 import os
 import re
-import statistics
 import subprocess
 import sys
 import tempfile
