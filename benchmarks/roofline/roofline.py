@@ -44,6 +44,7 @@ benchmark's own loop).
 """
 import argparse
 import collections
+import functools
 import os
 import re
 import subprocess
@@ -213,8 +214,11 @@ def disassembly(obj):
         return _disassembly[obj]
     table = {}
     if os.path.exists(obj):
-        text = subprocess.run(["objdump", "-d", "-M", "intel", "--no-show-raw-insn", "-w", obj],
-                              capture_output=True, text=True, check=False).stdout
+        try:
+            text = subprocess.run(["objdump", "-d", "-M", "intel", "--no-show-raw-insn", "-w", obj],
+                                  capture_output=True, text=True, check=False).stdout
+        except FileNotFoundError:
+            sys.exit("roofline.py: objdump not found (scripts/setup.sh --bench installs binutils)")
         for line in text.splitlines():
             m = re.match(r"\s*([0-9a-f]+):\s+(\S+)\s*(.*)$", line)
             if m:
@@ -260,14 +264,14 @@ def measure_work(events, self_counts, edges):
             t["root instructions"] += (r > 0) * count
         own[(ob, fn)] = t
 
-    callers = collections.defaultdict(list)  # callee -> [(caller, inclusive Ir)]
-    for (caller, callee), (calls, incl) in edges.items():
-        if caller != callee:
-            callers[callee].append((caller, incl, calls))
+    callers = collections.defaultdict(list)  # callee -> [(caller, inclusive Ir of its calls)]
+    for (caller, callee), (_, incl) in edges.items():
+        if caller != callee and incl > 0:
+            callers[callee].append((caller, float(incl)))
 
     share = {}
 
-    def distribution(node, depth=0):
+    def distribution(node):
         """A function's phases, as fractions."""
         if node in share:
             return share[node]
@@ -275,16 +279,11 @@ def measure_work(events, self_counts, edges):
         if p is not None:
             share[node] = {p: 1.0}
             return share[node]
-        if depth > 60:
-            return {"other": 1.0}
-        share[node] = {"other": 1.0}  # a cycle's guard
+        share[node] = {"other": 1.0}  # what a call cycle back to this function sees
         total = collections.Counter()
         weight = 0.0
-        for caller, incl, _ in callers.get(node, []):
-            w = float(incl)
-            if w <= 0:
-                continue
-            for ph, fr in distribution(caller, depth + 1).items():
+        for caller, w in callers.get(node, []):
+            for ph, fr in distribution(caller).items():
                 total[ph] += w * fr
             weight += w
         share[node] = {ph: v / weight for ph, v in total.items()} if weight > 0 else {"other": 1.0}
@@ -307,6 +306,7 @@ def measure_work(events, self_counts, edges):
     return per_phase
 
 
+@functools.cache
 def cache_args():
     """callgrind's simulated caches set to this machine's L1 data cache and L2 (the simulated
     last level), from sysfs: a miss there is a line the L3 or memory delivers. Stops with a
@@ -352,9 +352,12 @@ def work_per_update(bench, scene, cell, short, long_, workdir):
                        for ph in phases}
 
 
-def calls_text(w):
+def work_cells(w):
+    """The work columns of a row: instructions, flops, divisions and roots, libm calls, bytes."""
     calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
-    return ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
+    call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
+    return (f"{w['instructions']:.0f} | {w['flops']:.0f} | {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} "
+            f"| {w['far bytes']:.0f}")
 
 
 def timed(bench, scene, steps, cell, runs):
@@ -365,12 +368,12 @@ def timed(bench, scene, steps, cell, runs):
     for _ in range(runs):
         r = subprocess.run([bench, "--scene", scene, "--threads", "1", "--cell", str(cell), "--steps", str(steps),
                             "--repeats", "1", "--phases", "1"], capture_output=True, text=True, check=True)
-        m = re.search(r"phases \(share of ([0-9.]+) s\): (.*)", r.stderr)
+        m = re.search(r"phases \(share of [0-9.]+ s\): (.*)", r.stderr)
         row = r.stdout.strip().splitlines()[-1].split(",")
         particles, wall = int(row[3]), float(row[7])
         per_update = wall / (particles * steps) * 1e9
         shares = {}
-        for item in m.group(2).split(","):
+        for item in m.group(1).split(","):
             k, v = item.split()
             shares[k] = float(v) * per_update
         results.append((per_update, shares))
@@ -476,6 +479,12 @@ def main():
                     help="only the work per particle-update (no timing, no ceilings): instruction counts do not "
                          "drift with a shared machine's speed, so two builds compare exactly")
     a = ap.parse_args()
+    if a.runs < 1 or a.steps < 1:
+        ap.error(f"--runs ({a.runs}) and --steps ({a.steps}) must be at least 1")
+    if not 0 <= a.short < a.long:
+        ap.error(f"--short ({a.short}) and --long ({a.long}): 0 <= short < long (their difference is what is counted)")
+    if not a.cell > 0:
+        ap.error(f"--cell ({a.cell} mm) must be > 0")
     if a.work_only:
         print("| scene | phase | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 |")
         print("| --- | --- | --- | --- | --- | --- | --- |")
@@ -484,8 +493,7 @@ def main():
                 _, table = work_per_update(a.bench, scene, a.cell, a.short, a.long, work)
                 table["**the step**"] = sum(table.values(), collections.Counter())
                 for ph, w in table.items():
-                    print(f"| {SCENE_NAMES.get(scene, scene)} | {ph} | {w['instructions']:.1f} | {w['flops']:.1f} "
-                          f"| {w['divisions']:.1f}, {w['roots']:.1f} | {calls_text(w)} | {w['far bytes']:.0f} |")
+                    print(f"| {SCENE_NAMES.get(scene, scene)} | {ph} | {work_cells(w)} |")
         return
     if a.ceilings is None:
         ap.error("the bench_ceilings binary is needed (or --work-only)")
@@ -529,7 +537,6 @@ def main():
                 bound_by = max(resources, key=resources.get)
                 bound = resources[bound_by]
                 scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
-                call_text = calls_text(w)
                 if t is None:
                     time_text = gf = gb = ratio = sratio = ipc = "–"
                 else:
@@ -545,8 +552,7 @@ def main():
                         ([f"{100 * rate / c['adds']:.0f} %"] if c["adds"] else [])
                     ipc = f"{rate:.1f}" + (f" ({'; '.join(parts)})" if parts else "")
                 name = "**the step**" if ph == "step" else ph
-                print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {w['instructions']:.0f} | {w['flops']:.0f} "
-                      f"| {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} | {w['far bytes']:.0f} | {gf} | {gb} "
+                print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {work_cells(w)} | {gf} | {gb} "
                       f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} "
                       f"| {ipc} |")
             sys.stdout.flush()
