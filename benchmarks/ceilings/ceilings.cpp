@@ -16,7 +16,9 @@
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
-//     element (the write's allocate not counted, as STREAM does).
+//     element (the write's allocate not counted, as STREAM does);
+//   - synchronisation on N threads: an empty parallel region (fork and join) and a barrier,
+//     in microseconds, which the OpenMP wait policy sets (OMP_WAIT_POLICY).
 // Best of several repeats. Flags: --threads N (2; 1 without OpenMP), --quick 1 (a smoke run:
 // short loops, the numbers meaningless).
 #include "common/bench.hpp"
@@ -205,6 +207,39 @@ double triad(double mb, [[maybe_unused]] int threads, double seconds) {
     return best;
 }
 
+// What the step's synchronisation points cost on `threads` threads, in microseconds (best of
+// repeats): an empty parallel region, its fork and join (one per `parallel for` of the step),
+// and a barrier inside a region (one per colour of the scatter) that one thread reaches 20 us
+// after the others, as an uneven loop does (the 20 us not counted). Under
+// OMP_WAIT_POLICY=passive the waiting threads sleep and must be woken.
+struct sync_cost {
+    double region = 1e9, barrier = 1e9;
+};
+sync_cost synchronisation([[maybe_unused]] int threads, int count) {
+    constexpr double late = 20e-6;
+    sync_cost best;
+    for (int rep = 0; rep < 5; ++rep) {
+        double t0 = now();
+        for (int k = 0; k < count; ++k) {
+            GIMLET_OMP(parallel num_threads(threads))
+            { asm volatile("" ::: "memory"); }
+        }
+        best.region = std::min(best.region, (now() - t0) / count * 1e6);
+        t0 = now();
+        GIMLET_OMP(parallel num_threads(threads))
+        for (int k = 0; k < count; ++k) {
+#if defined(_OPENMP)
+            if (omp_get_thread_num() == 0)
+#endif
+                for (const double t1 = now(); now() - t1 < late;) {
+                }
+            GIMLET_OMP(barrier)
+        }
+        best.barrier = std::min(best.barrier, (now() - t0) / count * 1e6 - late * 1e6);
+    }
+    return best;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -239,6 +274,9 @@ int main(int argc, char** argv) try {
                 per_call([](double x) { return std::sqrt(x); }, calls, sink),
                 per_call([](double x) { return std::pow(x, -1.1); }, calls, sink),
                 per_call([](double x) { return std::log(x); }, calls, sink));
+    const auto sync = synchronisation(threads, quick ? 200 : 2000);
+    std::printf("\nsynchronisation on %d threads (us each): an empty parallel region %.2f, a barrier %.2f\n", threads,
+                sync.region, sync.barrier);
     std::printf("\nclock (a chain of dependent integer additions, one per cycle): %.2f GHz\n", clock_ghz(iterations / 4));
     std::printf("independent register additions: %.2f instructions per ns\n", addition_rate(iterations / 4));
     if (sink == 42.0) std::printf("\n");  // keeps the chains' results alive

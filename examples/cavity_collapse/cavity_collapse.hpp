@@ -194,7 +194,7 @@ public:
     sample peaks(const Solver& sol, double peak_so_far = -std::numeric_limits<double>::infinity()) const {
         sample r;
         r.time = double(sol.time());
-        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius, peak_so_far);
+        const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius, peak_so_far, hot_work_);
         r.hot_spot = hs.temperature;
         r.hot_spot_centre = hs.centre;
         r.max_temperature = hs.max_temperature;
@@ -260,6 +260,8 @@ private:
     settings s_;
     double bulk_;
     std::vector<double> levels_;
+    // The hot-spot search's scratch, kept between the steps' calls (a cache: peaks() stays const).
+    mutable gimlet::diagnostics::hot_spot_workspace<S::vector> hot_work_;
     double centre_y_[2];
 };
 

@@ -352,7 +352,13 @@ int run(const settings& s, const run_files& io) {
     su.close();
     if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
 
-    std::printf("  %llu steps in %.1f s\n", static_cast<unsigned long long>(sol.steps()), wall);
+    // Where the time went: the solver's phases (solver::timings()), and the rest of the run
+    // (the time step's choice, the observers, the files), which scales differently with threads.
+    const auto& ph = sol.timings();
+    std::printf("  %llu steps in %.1f s: steps %.2f s (P2G %.2f, grid %.2f, contact %.2f, G2P %.2f, material %.2f), "
+                "time steps, observers and files %.2f s\n",
+                static_cast<unsigned long long>(sol.steps()), wall, ph.total(), ph.particle_to_grid + ph.sort,
+                ph.grid_update, ph.contact, ph.grid_to_particle, ph.material_update, wall - ph.total());
     // A time or value the run never reached reads "none" here (summary.csv keeps -1 there).
     auto at_us = [](double t, const char* fmt) {
         char text[64] = "none";

@@ -287,6 +287,34 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     }
 }
 
+TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives each call's own answer", "[diagnostics]") {
+    // One workspace passed to calls on two scenes of different sizes (2 x 2 and 4 x 4
+    // particles per cell, the larger searched on 3 threads), at three radii, with and without
+    // a running peak, in an order that grows and shrinks every scratch array: each answer is
+    // bit for bit that of a call with scratch of its own.
+    auto small = two_blocks(2, 2);
+    std::vector<solver> large = on_1_2_3_threads();
+    for (auto* sol : {&small, &large[2]}) {
+        std::uint64_t state = 99;
+        for (std::size_t i = 0; i < sol->particles().size(); ++i) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            sol->particles()[i].get<temperature>() = 300.0 + double((state >> 40) % 997) * 0.5;
+        }
+    }
+    gimlet::diagnostics::hot_spot_workspace<S::vector> work;
+    for (const double radius : {0.75e-3, 2e-3, 0.3e-3})
+        for (auto* sol : {&large[2], &small, &large[2]})
+            for (const double above : {-std::numeric_limits<double>::infinity(), 560.0}) {
+                const auto fresh = gimlet::diagnostics::hot_spot(*sol, radius, above);
+                const auto reused = gimlet::diagnostics::hot_spot(*sol, radius, above, work);
+                INFO("radius " << radius << ", " << sol->particles().size() << " particles, above " << above);
+                CHECK(reused.temperature == fresh.temperature);
+                CHECK(reused.max_temperature == fresh.max_temperature);
+                CHECK(reused.centre == fresh.centre);
+                CHECK(reused.particles == fresh.particles);
+            }
+}
+
 TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and sums on 1, 2 and 3 threads", "[diagnostics][threads]") {
     // The scene of the test above (7,000 and more particles: the strips are gathered on the
     // threads), each particle given a pseudo-random velocity, the same in every run: the walls'

@@ -29,6 +29,19 @@ struct hot_spot_result {
     std::size_t particles = 0;   ///< particles in that disc
 };
 
+/// What hot_spot allocates on each call (its bins and the particles' copies in bin order),
+/// kept for the next call. A caller that asks every step passes the same workspace to each
+/// call and saves the allocations, their zeroing and their page faults, which run on one
+/// thread (at 0.25 mm cells, 215,784 particles, about 12 MB a call: docs/performance.md). It
+/// holds nothing the answer depends on: any workspace, new or used, gives the same result.
+template <class Vector>
+struct hot_spot_workspace {
+    std::vector<Vector> block_lo, block_hi, sorted_x;
+    std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
+    std::vector<std::size_t> bin, cursor, start;
+    std::vector<double> block_max, sorted_m, sorted_mT;
+};
+
 /// Over every particle centre c, the mass-weighted mean temperature of the particles whose
 /// centres lie within `radius` (m) of c; the largest such mean is the hot-spot temperature.
 /// Ties go to the lowest particle index. Needs the temperature field (a thermal policy that is
@@ -41,8 +54,11 @@ struct hot_spot_result {
 /// cooler disc, or none (temperature -infinity, no particles). max_temperature is always the
 /// hottest particle. A NaN `above` is ignored (as -infinity); with +infinity (its margin is then
 /// infinite too) no centre is skipped at all and the hottest disc is returned.
+///
+/// `work` is scratch reused between calls (hot_spot_workspace of the solver's vector type);
+/// the overload without it makes its own.
 template <class Solver>
-[[nodiscard]] auto hot_spot(const Solver& s, double radius, double above = -std::numeric_limits<double>::infinity()) {
+[[nodiscard]] auto hot_spot(const Solver& s, double radius, double above, hot_spot_workspace<typename Solver::vector>& work) {
     static_assert(Solver::store_type::template has<fields::temperature>,
                   "hot_spot needs particle temperatures: use a thermal policy that is on");
     require_positive("hot-spot radius (m)", radius);
@@ -65,7 +81,10 @@ template <class Solver>
     const std::size_t blocks = detail::observer_blocks(n, threads);
 
     // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
-    std::vector<vector> block_lo(blocks, x[0]), block_hi(blocks, x[0]);
+    auto& block_lo = work.block_lo;
+    auto& block_hi = work.block_hi;
+    block_lo.assign(blocks, x[0]);
+    block_hi.assign(blocks, x[0]);
     detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         vector lo_b = x[0], hi_b = x[0];
         for (std::size_t i = first; i < last; ++i) lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
@@ -95,12 +114,17 @@ template <class Solver>
     // is the serial sort's: by bin, then by index. (A count per block and bin: at most n / bins
     // blocks, so that the counts take no more room than the particles.)
     const std::size_t sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
-    std::vector<std::size_t> start;
-    std::vector<std::size_t> bin(n);
-    std::vector<std::array<std::size_t, dim>> cell(n);  // each particle's bin, per axis
-    std::vector<std::size_t> cursor(sort_blocks * total, 0);  // per block and bin: a count, then an offset
+    // Every entry of bin, cell and the copies is written before it is read.
+    auto& start = work.start;
+    auto& bin = work.bin;
+    auto& cell = work.cell;  // each particle's bin, per axis
+    auto& cursor = work.cursor;  // per block and bin: a count, then an offset
+    bin.resize(n);
+    cell.resize(n);
+    cursor.assign(sort_blocks * total, 0);
     // Per block and bin, the hottest particle's temperature (for the bound on each disc below).
-    std::vector<double> block_max(sort_blocks * total, -std::numeric_limits<double>::infinity());
+    auto& block_max = work.block_max;
+    block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
     detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         std::size_t* count = cursor.data() + b * total;
         double* t_max = block_max.data() + b * total;
@@ -112,8 +136,12 @@ template <class Solver>
         }
     });
     detail::block_offsets(cursor, sort_blocks, total, start);
-    std::vector<vector> sorted_x(n);
-    std::vector<double> sorted_m(n), sorted_mT(n);
+    auto& sorted_x = work.sorted_x;
+    auto& sorted_m = work.sorted_m;
+    auto& sorted_mT = work.sorted_mT;
+    sorted_x.resize(n);
+    sorted_m.resize(n);
+    sorted_mT.resize(n);
     detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         std::size_t* at = cursor.data() + b * total;
         for (std::size_t i = first; i < last; ++i) {
@@ -168,11 +196,11 @@ template <class Solver>
     // is small. "Cooler" keeps a margin of 1e-9 of that floor: a computed mean of equal
     // temperatures can round a few ulps above them, and without the margin every centre, the
     // hottest particle's own included, could be skipped.
-    // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks).
-    std::vector<double> bin_max = std::move(block_max);
+    // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks), in
+    // the first block's entries.
     for (std::size_t b = 1; b < sort_blocks; ++b)
-        for (std::size_t k = 0; k < total; ++k) bin_max[k] = std::max(bin_max[k], bin_max[b * total + k]);
-    bin_max.resize(total);
+        for (std::size_t k = 0; k < total; ++k) block_max[k] = std::max(block_max[k], block_max[b * total + k]);
+    const double* bin_max = block_max.data();
     std::size_t hottest = 0;
     for (std::size_t i = 0; i < n; ++i)
         if (T[i] > T[hottest]) hottest = i;
@@ -214,6 +242,13 @@ template <class Solver>
         r.particles = best.count;
     }
     return r;
+}
+
+/// hot_spot with scratch of its own (see hot_spot_workspace).
+template <class Solver>
+[[nodiscard]] auto hot_spot(const Solver& s, double radius, double above = -std::numeric_limits<double>::infinity()) {
+    hot_spot_workspace<typename Solver::vector> work;
+    return hot_spot(s, radius, above, work);
 }
 
 /// The material hotter than each of `temperatures` (K): its mass (kg; per metre of depth in 2-D)
