@@ -80,6 +80,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             heavy = heavy || m > mass_cutoff_;
             cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
             cm_accel_[e] = cm_first_[e];
+            cm_product_[e] = vector::Zero();  // the first iteration's M a, summed into below
             if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
         }
         cm_block_heavy_[std::size_t(b)] = heavy;
@@ -143,7 +144,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         // only, its weights there renormalised to one: sum_i (M a)_i is then
         // sum_p m_p a_p = sum_j m_j a_j exactly, and the correction keeps momentum where a
         // particle also reaches a light node.
-        for_each_heavy_block_entry([&](std::size_t e) { cm_product_[e] = vector::Zero(); });
+        // M a starts from zero: cleared by the pass above for the first iteration, and by the
+        // update below for the others (one pass, and one parallel region, fewer each).
         if (it == 0) {
             // The first iteration finds each particle's entries through the partition's chooser
             // and records them, with its weight on the heavy nodes and its kind.
@@ -181,19 +183,20 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
                 scatter_listed(i, ap);
             });
         }
+        // a^(j+1) from M a^(j), entry by entry. After the last iteration, in the same pass,
+        // f <- f + m (a^(k) - a^(0)): m a^(k) where a component is free, the force as it was
+        // where a wall holds it (the wall then sets that velocity component) and at a shared
+        // node's entry (where a^(k) = a^(0)). Each entry's force reads its own a^(k) only, so
+        // this is the separate pass after the iterations, fused.
+        const bool last = it + 1 == iterations;
         for_each_heavy_block_entry([&](std::size_t e) {
             const real m = grid_.mass[e];
             if (m > mass_cutoff_ && !shared_entry(e))
                 cm_accel_[e] = cm_first_[e] + wall_free_[e].cwiseProduct(cm_accel_[e] - cm_product_[e] / m);
+            if (!last) cm_product_[e] = vector::Zero();  // the next iteration's M a starts from zero
+            else if (m > mass_cutoff_) grid_.force[e] += m * (cm_accel_[e] - cm_first_[e]);
         });
     }
-    // f <- f + m (a^(k) - a^(0)): m a^(k) where a component is free, the force as it was where
-    // a wall holds it (the wall then sets that velocity component) and at a shared node's entry
-    // (where a^(k) = a^(0)).
-    for_each_heavy_block_entry([&](std::size_t e) {
-        const real m = grid_.mass[e];
-        if (m > mass_cutoff_) grid_.force[e] += m * (cm_accel_[e] - cm_first_[e]);
-    });
 }
 
 }  // namespace gimlet
