@@ -126,9 +126,9 @@ struct self_contact {
         const auto& normal0 = ps.template column<fields::surface_normal>();
         const auto& F = ps.template column<fields::deformation_gradient>();
         // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle writes its
-        // own entries, so the slabs' threads share nothing here.
+        // own entries; pass 1 below computes them (it does not read them), and pass 2 reads them.
         current_.resize(n * std::size_t(dim));
-        view.for_each_particle_by_slab([&](std::size_t i) {
+        auto current_normal = [&](std::size_t i) {
             vector c = vector::Zero();
             const real a = normal0[i].norm();
             if (a > 0) {
@@ -138,7 +138,7 @@ struct self_contact {
                 c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
             }
             for (int d = 0; d < dim; ++d) current_[i * std::size_t(dim) + std::size_t(d)] = double(c[d]);
-        });
+        };
         auto current = [&](std::size_t i) {
             vector c;
             for (int d = 0; d < dim; ++d) c[d] = real(current_[i * std::size_t(dim) + std::size_t(d)]);
@@ -152,9 +152,11 @@ struct self_contact {
             best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
             front_along_[e] = -inf, front_against_[e] = inf;
         });
-        // Pass 1: the reference direction of each node and body (largest S m |n|, ties to the
-        // lower particle index, so the choice does not depend on the order of the sum).
+        // Pass 1: each particle's current normal, and the reference direction of each node and
+        // body (largest S m |n|, ties to the lower particle index, so the choice does not depend
+        // on the order of the sum).
         view.for_each_particle_by_slab([&](std::size_t i) {
+            current_normal(i);
             const real a = normal0[i].norm();
             if (!(a > 0)) return;
             const std::size_t base = std::size_t(body[i]) * nodes;
