@@ -80,10 +80,13 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
             heavy = heavy || m > mass_cutoff_;
             cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
             cm_accel_[e] = cm_first_[e];
-            cm_product_[e] = vector::Zero();  // the first iteration's M a, summed into below
             if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
         }
         cm_block_heavy_[std::size_t(b)] = heavy;
+        // The first iteration's M a starts from zero in the blocks the iterations visit (only
+        // there: the product's pages elsewhere stay untouched).
+        if (heavy)
+            for (std::size_t e = first; e < last; ++e) cm_product_[e] = vector::Zero();
     }
     cm_blocks_.clear();
     for (std::size_t b = 0; b < blocks; ++b)
