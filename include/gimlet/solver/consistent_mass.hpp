@@ -60,7 +60,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     // The pass runs in blocks of cm_block entries and notes the blocks that hold an entry above
     // the cut-off: the iterations' node passes visit those blocks only. Everywhere else the
     // passes do nothing (no mass, so no update and no force), and M a is neither written nor
-    // read there: the grid's empty room costs this one pass a step, not 2k + 2. This pass still
+    // read there: the grid's empty room costs this one pass a step, not k + 1. This pass still
     // writes a^(0) in every block of the swept field slots, light entries included: the
     // particles' gathers read a at every node of their stencils. The slots the step does not
     // sweep (swept_fields_: self-contact's second fields where nothing splits) hold no
