@@ -210,8 +210,9 @@ double triad(double mb, [[maybe_unused]] int threads, double seconds) {
 // What the step's synchronisation points cost on `threads` threads, in microseconds (best of
 // repeats): an empty parallel region, its fork and join (one per `parallel for` of the step),
 // and a barrier inside a region (one per colour of the scatter) that one thread reaches 20 us
-// after the others, as an uneven loop does (the 20 us not counted). Under
-// OMP_WAIT_POLICY=passive the waiting threads sleep and must be woken.
+// after the others, as an uneven loop does (the 20 us not counted): what the last thread pays
+// to release the others, which under OMP_WAIT_POLICY=passive have gone to sleep. A sleeper's
+// own wake-up, where under 20 us, hides behind the next round's late arrival: a lower bound.
 struct sync_cost {
     double region = 1e9, barrier = 1e9;
 };

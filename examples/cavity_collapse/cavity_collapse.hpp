@@ -260,7 +260,8 @@ private:
     settings s_;
     double bulk_;
     std::vector<double> levels_;
-    // The hot-spot search's scratch, kept between the steps' calls (a cache: peaks() stays const).
+    // The hot-spot search's scratch, kept between the steps' calls (a cache: peaks() stays
+    // const, and is not called from two threads at once).
     mutable gimlet::diagnostics::hot_spot_workspace<S::vector> hot_work_;
     double centre_y_[2];
 };

@@ -33,7 +33,8 @@ struct hot_spot_result {
 /// kept for the next call. A caller that asks every step passes the same workspace to each
 /// call and saves the allocations, their zeroing and their page faults, which run on one
 /// thread (at 0.25 mm cells, 215,784 particles, about 12 MB a call: docs/performance.md). It
-/// holds nothing the answer depends on: any workspace, new or used, gives the same result.
+/// holds nothing the answer depends on: any workspace, new or used, gives the same result. One
+/// workspace serves one call at a time: calls that run concurrently need one each.
 template <class Vector>
 struct hot_spot_workspace {
     std::vector<Vector> block_lo, block_hi, sorted_x;

@@ -126,7 +126,8 @@ struct self_contact {
         const auto& normal0 = ps.template column<fields::surface_normal>();
         const auto& F = ps.template column<fields::deformation_gradient>();
         // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle writes its
-        // own entries; pass 1 below computes them (it does not read them), and pass 2 reads them.
+        // own entries; pass 1 below computes them (it does not read them), and the later passes
+        // read them.
         current_.resize(n * std::size_t(dim));
         auto current_normal = [&](std::size_t i) {
             vector c = vector::Zero();
