@@ -285,13 +285,27 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
             CHECK(r.particles == one.particles);
         }
     }
+    // The hottest particle with NaN temperatures (the solver would have stopped; a user's
+    // field need not come from it): a NaN is never taken, on every thread count, also where
+    // it opens a block of the parallel pass (its first particle on 2 and 3 threads).
+    const std::size_t n = runs[0].particles().size();
+    for (auto& run : runs)
+        for (std::size_t i = 0; i < n; ++i)
+            run.particles()[i].get<temperature>() = i % 97 == 3 || i == (n + 1) / 2 || i == (n + 2) / 3
+                                                        ? std::numeric_limits<double>::quiet_NaN()
+                                                        : 300.0 + double(i % 89);
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        INFO("NaN temperatures, threads " << k + 1);
+        CHECK(gimlet::diagnostics::hot_spot(runs[k], 0.75e-3).max_temperature == 388.0);
+    }
 }
 
 TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives each call's own answer", "[diagnostics]") {
     // One workspace passed to calls on two scenes of different sizes (2 x 2 and 4 x 4
-    // particles per cell, the larger searched on 3 threads), at three radii, with and without
-    // a running peak, in an order that grows and shrinks every scratch array: each answer is
-    // bit for bit that of a call with scratch of its own.
+    // particles per cell, the larger searched on 3 threads), at three radii, without a running
+    // peak, and with one just under the hottest disc, at it and above it (where the disc named
+    // depends on which centres the bins' maxima skip), in an order that grows and shrinks every
+    // scratch array: each answer is bit for bit that of a call with scratch of its own.
     auto small = two_blocks(2, 2);
     std::vector<solver> large = on_1_2_3_threads();
     for (auto* sol : {&small, &large[2]}) {
@@ -304,7 +318,12 @@ TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives eac
     gimlet::diagnostics::hot_spot_workspace<S::vector> work;
     for (const double radius : {0.75e-3, 2e-3, 0.3e-3})
         for (auto* sol : {&large[2], &small, &large[2]})
-            for (const double above : {-std::numeric_limits<double>::infinity(), 560.0}) {
+            for (const int peak : {0, 1, 2, 3}) {
+                const double hottest = gimlet::diagnostics::hot_spot(*sol, radius).temperature;
+                const double above = peak == 0   ? -std::numeric_limits<double>::infinity()
+                                     : peak == 1 ? std::nextafter(hottest, 0.0)
+                                     : peak == 2 ? hottest
+                                                 : hottest + 100.0;
                 const auto fresh = gimlet::diagnostics::hot_spot(*sol, radius, above);
                 const auto reused = gimlet::diagnostics::hot_spot(*sol, radius, above, work);
                 INFO("radius " << radius << ", " << sol->particles().size() << " particles, above " << above);

@@ -39,7 +39,7 @@ template <class Vector>
 struct hot_spot_workspace {
     std::vector<Vector> block_lo, block_hi, sorted_x;
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
-    std::vector<std::size_t> bin, cursor, start;
+    std::vector<std::size_t> bin, cursor, start, block_hottest;
     std::vector<double> block_max, sorted_m, sorted_mT;
 };
 
@@ -82,15 +82,25 @@ template <class Solver>
     const std::size_t blocks = detail::observer_blocks(n, threads);
 
     // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
+    // The same pass finds each block's hottest particle: the first of its largest temperatures,
+    // NaN never taken (`none` where the block has only NaN).
     auto& block_lo = work.block_lo;
     auto& block_hi = work.block_hi;
+    auto& block_hottest = work.block_hottest;
+    constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
     block_lo.assign(blocks, x[0]);
     block_hi.assign(blocks, x[0]);
+    block_hottest.assign(blocks, none);
     detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         vector lo_b = x[0], hi_b = x[0];
-        for (std::size_t i = first; i < last; ++i) lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
+        std::size_t h = none;
+        for (std::size_t i = first; i < last; ++i) {
+            lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
+            if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
+        }
         block_lo[b] = lo_b;
         block_hi[b] = hi_b;
+        block_hottest[b] = h;
     });
     vector lo = x[0], hi = x[0];
     for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
@@ -198,13 +208,21 @@ template <class Solver>
     // temperatures can round a few ulps above them, and without the margin every centre, the
     // hottest particle's own included, could be skipped.
     // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks), in
-    // the first block's entries.
-    for (std::size_t b = 1; b < sort_blocks; ++b)
-        for (std::size_t k = 0; k < total; ++k) block_max[k] = std::max(block_max[k], block_max[b * total + k]);
+    // the first block's entries; the bins split between the threads where there are many.
+    detail::for_each_block(total, detail::observer_blocks(total * (sort_blocks - 1), threads), true, threads,
+                           [&](std::size_t, std::size_t first, std::size_t last) {
+                               for (std::size_t b = 1; b < sort_blocks; ++b)
+                                   for (std::size_t k = first; k < last; ++k)
+                                       block_max[k] = std::max(block_max[k], block_max[b * total + k]);
+                           });
     const double* bin_max = block_max.data();
+    // The hottest particle, the first of the largest temperatures: what the serial scan
+    // `if (T[i] > T[hottest]) hottest = i` from hottest = 0 gives (it keeps particle 0 where
+    // that one is NaN, and otherwise never takes a NaN), from the blocks' own in block order.
     std::size_t hottest = 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (T[i] > T[hottest]) hottest = i;
+    if (!std::isnan(double(T[0])))
+        for (const std::size_t h : block_hottest)
+            if (h != none && T[h] > T[hottest]) hottest = h;
     r.max_temperature = std::max(0.0, double(T[hottest]));
     std::size_t unused = 0;
     const double floor = std::max(disc(hottest, unused), above);
