@@ -352,12 +352,17 @@ def work_per_update(bench, scene, cell, short, long_, workdir):
                        for ph in phases}
 
 
+def whole(x):
+    """x to the unit; a difference that rounds to zero prints 0, not -0."""
+    return f"{x:.0f}" if round(x) != 0 else "0"
+
+
 def work_cells(w):
     """The work columns of a row: instructions, flops, divisions and roots, libm calls, bytes."""
     calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
     call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
-    return (f"{w['instructions']:.0f} | {w['flops']:.0f} | {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} "
-            f"| {w['far bytes']:.0f}")
+    return (f"{whole(w['instructions'])} | {whole(w['flops'])} | {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} "
+            f"| {whole(w['far bytes'])}")
 
 
 def timed(bench, scene, steps, cell, runs):
