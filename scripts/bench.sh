@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Build the benchmarks (`bench` preset) and run them all: the machine's ceilings, the material
 # update with two particles per vector, throughput (the reference scene and the 2-D HMX step,
-# 1 and 2 threads, scaling with particle count), the per-phase roofline, the cost of each
+# 1 and 2 threads, scaling with particle count), the per-phase roofline, strong scaling to the
+# machine's cores where it has 8 or more (benchmarks/scaling/many_cores.sh), the cost of each
 # effect, accuracy against time, and the flagship's outputs against outputs off. CSVs and
 # Markdown tables go to results/bench/, plots to docs/perf_*.png (drawn with Debian's
 # /usr/bin/python3, which has matplotlib).
@@ -98,7 +99,15 @@ else
     echo "bench.sh: no valgrind or objdump: the per-phase roofline is skipped (scripts/setup.sh --bench installs them)" \
         | tee "$out/roofline.md"
 fi
-load "roofline end / scaling start"
+load "roofline end / many cores start"
+# Strong scaling to this machine's cores and the machine's own ceiling (docs/performance.md,
+# "Scaling to 16 threads, measured"): where it has 8 cores or more, or at toy sizes with --quick.
+if [ "$quick" = 1 ] || [ "$(nproc)" -ge 8 ]; then
+    bash benchmarks/scaling/many_cores.sh "$build" $([ "$quick" = 1 ] && echo --quick) | tee "$out/many_cores.txt"
+else
+    echo "bench.sh: $(nproc) cores: the many-core scaling is skipped (it needs 8 or more)" | tee "$out/many_cores.txt"
+fi
+load "many cores end / scaling start"
 
 # Scaling: the same number of particle-updates at each size (250 steps at 64,000 particles),
 # but no more simulated time than the reference run's 14 us (coarse grids take long steps and

@@ -12,7 +12,8 @@
 //                      (examples/common/hmx_defaults.hpp)
 // Flags: --cell MM (0.5), --steps N (1000 at 0.5 mm; scaled by particle count if omitted),
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
-//        the share of each phase of the step, from solver::timings(), on stderr),
+//        the share of each phase of the step, from solver::timings(), on stderr, and of
+//        P2G's parts: the weights, the slabs, the clearing and scatters),
 //        --consistent-mass K (solver_options::consistent_mass_iterations, at most 5 at the
 //        default Courant number; 0 for the reference scene and under USL, 4 for the hmx scene),
 //        --volume-filter 1 (solver_options::volume_filter; the hmx scene only, with
@@ -102,6 +103,8 @@ int main(int argc, char** argv) try {
         std::fprintf(stderr, "phases (share of %.3f s): sort %.3f, P2G %.3f, grid %.3f, contact %.3f, G2P %.3f, material %.3f\n",
                      t, p.sort / t, p.particle_to_grid / t, p.grid_update / t, p.contact / t, p.grid_to_particle / t,
                      p.material_update / t);
+        std::fprintf(stderr, "P2G's parts (share of the step): weights %.3f, slabs %.3f, clearing and scatters %.3f\n",
+                     p.weights / t, p.slabs / t, (p.particle_to_grid - p.weights - p.slabs) / t);
     }
     return 0;
 } catch (const std::exception& e) {

@@ -300,6 +300,25 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     }
 }
 
+TEST_CASE("solver::timings: every phase counted, the parts of P2G within it", "[diagnostics]") {
+    // The scene above, three steps: each phase is a non-negative time, the step's phases are
+    // there (P2G, the grid update, G2P and the material update each took some time), and the
+    // weights and the slabs, counted in P2G too, are parts of it.
+    auto sol = two_blocks(2, 2);
+    const double dt = 0.2 * sol.stable_time_step();
+    for (int k = 0; k < 3; ++k) sol.step(dt);
+    const auto& t = sol.timings();
+    for (const double phase : {t.sort, t.particle_to_grid, t.grid_update, t.contact, t.grid_to_particle,
+                               t.material_update, t.weights, t.slabs})
+        CHECK(phase >= 0.0);
+    CHECK(t.particle_to_grid > 0.0);
+    CHECK(t.grid_to_particle > 0.0);
+    CHECK(t.material_update > 0.0);
+    CHECK(t.weights > 0.0);
+    CHECK(t.weights + t.slabs <= t.particle_to_grid);
+    CHECK(t.total() == t.sort + t.particle_to_grid + t.grid_update + t.contact + t.grid_to_particle + t.material_update);
+}
+
 TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives each call's own answer", "[diagnostics]") {
     // One workspace passed to calls on two scenes of different sizes (2 x 2 and 4 x 4
     // particles per cell, the larger searched on 3 threads), at three radii, without a running

@@ -139,6 +139,12 @@ struct step_timings {
     double contact = 0;            ///< multi-field contact at nodes shared by bodies
     double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
     double material_update = 0;    ///< velocity gradient, constitutive update, checks
+    /// Two parts of particle_to_grid, counted in it too (not in total() again), to tell what in
+    /// it scales with the threads: each particle's weights and gradients at x^n, and grouping
+    /// the particles into the scatter's slabs with the partition's per-step preparation
+    /// (self-contact's split nodes). The rest of particle_to_grid is the clearing and the
+    /// scatters.
+    double weights = 0, slabs = 0;
     [[nodiscard]] double total() const noexcept {
         return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
     }

@@ -325,10 +325,13 @@ private:
     struct phase_clock {
         using clock = std::chrono::steady_clock;
         clock::time_point mark = clock::now();
-        void operator()(double& into) {
+        // Adds the time since the last lap to `into`, and returns it.
+        double operator()(double& into) {
             const auto now = clock::now();
-            into += std::chrono::duration<double>(now - mark).count();
+            const double lap = std::chrono::duration<double>(now - mark).count();
+            into += lap;
             mark = now;
+            return lap;
         }
     };
 
@@ -360,7 +363,7 @@ private:
         // step's last pass could have computed them: a caller may change positions through a
         // reference to the store kept from an earlier particles() call, which no flag sees.
         compute_stencils();
-        lap(timings_.particle_to_grid);
+        timings_.weights += lap(timings_.particle_to_grid);
         if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
         lap(timings_.sort);
         slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
@@ -376,8 +379,8 @@ private:
             swept_fields_ = split_now_ || !later_fields_empty_ ? fields_per_body : 1;
             if (split_now_) later_fields_empty_ = false;  // this step writes there, even if it stops part-way
             choose_fields();
-            lap(timings_.particle_to_grid);
         }
+        timings_.slabs += lap(timings_.particle_to_grid);
         dt_ = dt;
         if (options_.volumetric_average) average_mean_stress();
         clear_grid();
