@@ -5,7 +5,11 @@
 # one-thread processes. Run by scripts/bench.sh where there are 8 cores or more (or with
 # --quick, at toy sizes, anywhere); by hand:
 #
-#   benchmarks/scaling/many_cores.sh BUILD_DIR [--quick]     (BUILD_DIR: a `bench` build)
+#   benchmarks/scaling/many_cores.sh BUILD_DIR [--quick]
+#
+# BUILD_DIR: a `bench` build with the flagship, as scripts/bench.sh makes it (`cmake --preset
+# bench -DGIMLET_BUILD_EXAMPLES=ON -DGIMLET_EXAMPLES=cavity_collapse`). N is nproc, or
+# GIMLET_CORES where set: on a machine with two hardware threads a core, set it to the cores.
 #
 # It prints, in order:
 #   1. bench_ceilings on N threads (flops, triads, the synchronisation costs) under
@@ -19,7 +23,8 @@
 #   4. the same as 2 at 64,000 particles (0.5 mm, 300 steps, median of 2);
 #   5. the flagship, cavity_collapse at 0.25 mm (215,784 particles) to 12 us with the
 #      quickstart's outputs (no figures), on 2 and N threads, with its summary line's split.
-# N is nproc. Compare ratios within one run only: a machine's one-thread rate moves by 10-15 %.
+# Compare ratios within one run only: a machine's one-thread rate moves by 10-15 %. At 1.02 M
+# particles the N copies need about N x 650 MB of memory.
 set -euo pipefail
 
 build="${1:?usage: many_cores.sh BUILD_DIR [--quick]}"
@@ -28,7 +33,11 @@ quick=0
 bench="$build/benchmarks/throughput/bench_throughput"
 ceilings="$build/benchmarks/ceilings/bench_ceilings"
 flagship="$build/examples/cavity_collapse/cavity_collapse"
-n=$(nproc)
+n=${GIMLET_CORES:-$(nproc)}
+for program in "$bench" "$ceilings" "$flagship"; do
+    [ -x "$program" ] || { echo "many_cores.sh: $program is missing (see the header for the build)" >&2; exit 2; }
+done
+command -v taskset >/dev/null || echo "many_cores.sh: no taskset: the copies are not pinned to cores"
 if [ "$quick" = 1 ]; then
     big=(--cell 2 --steps 3); small=(--cell 2 --steps 3); fine=(--cell 2 --end-us 2); ceil=(--quick 1)
     copies=$(( n < 2 ? n : 2 ))
@@ -62,11 +71,13 @@ scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 for scene in reference hmx; do
     for k in 1 "$copies"; do
+        pids=()
         for i in $(seq 0 $((k - 1))); do
             pin "$i" "${passive[@]}" "$bench" --scene "$scene" "${big[@]}" --repeats 2 --threads 1 --phases 1 \
                 >"$scratch/copy_$i.txt" 2>&1 &
+            pids+=($!)
         done
-        wait
+        for pid in "${pids[@]}"; do wait "$pid" || echo "many_cores.sh: a copy failed (its output below)"; done
         echo "-- $scene, $k at once (each copy: its phases, P2G's parts, its CSV row)"
         for i in $(seq 0 $((k - 1))); do echo "copy $i"; cat "$scratch/copy_$i.txt"; done
     done
@@ -80,6 +91,7 @@ for t in 2 "$n"; do
     start=$(date +%s.%N)
     "${passive[@]}" "$flagship" --velocity 300 --radius 10 "${fine[@]}" --snapshot-every-us 0 \
         --snapshots-after-contact-us 4,6,8,12,14,20,24,25,30 --no-figures --threads "$t" --quiet \
-        --output "$scratch/flagship" 2>/dev/null | grep "steps in" | sed "s/^ */$t threads, passive: /"
+        --output "$scratch/flagship" >"$scratch/flagship.txt" 2>&1 || echo "many_cores.sh: the flagship failed:"
+    grep "steps in" "$scratch/flagship.txt" | sed "s/^ */$t threads, passive: /" || cat "$scratch/flagship.txt"
     echo "$t threads, whole process: $(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }') s"
 done

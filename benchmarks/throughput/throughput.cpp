@@ -103,7 +103,7 @@ int main(int argc, char** argv) try {
         std::fprintf(stderr, "phases (share of %.3f s): sort %.3f, P2G %.3f, grid %.3f, contact %.3f, G2P %.3f, material %.3f\n",
                      t, p.sort / t, p.particle_to_grid / t, p.grid_update / t, p.contact / t, p.grid_to_particle / t,
                      p.material_update / t);
-        std::fprintf(stderr, "P2G's parts (share of the step): weights %.3f, slabs %.3f, clearing and scatters %.3f\n",
+        std::fprintf(stderr, "P2G's parts (share of the step): weights %.3f, slabs %.3f, the rest (clearing, scatters) %.3f\n",
                      p.weights / t, p.slabs / t, (p.particle_to_grid - p.weights - p.slabs) / t);
     }
     return 0;

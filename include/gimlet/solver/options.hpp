@@ -134,7 +134,7 @@ struct solver_options {
 /// solver::timings(). Fused loops are counted where they end up.
 struct step_timings {
     double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
-    double particle_to_grid = 0;   ///< weights, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
+    double particle_to_grid = 0;   ///< weights, slabs, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)
     double grid_update = 0;        ///< nodal velocities, momentum update, walls
     double contact = 0;            ///< multi-field contact at nodes shared by bodies
     double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
@@ -142,8 +142,8 @@ struct step_timings {
     /// Two parts of particle_to_grid, counted in it too (not in total() again), to tell what in
     /// it scales with the threads: each particle's weights and gradients at x^n, and grouping
     /// the particles into the scatter's slabs with the partition's per-step preparation
-    /// (self-contact's split nodes). The rest of particle_to_grid is the clearing and the
-    /// scatters.
+    /// (self-contact's split nodes) and the choice of fields. The rest of particle_to_grid is
+    /// the clearing, the scatters, and the light particles' and shared nodes' searches.
     double weights = 0, slabs = 0;
     [[nodiscard]] double total() const noexcept {
         return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
