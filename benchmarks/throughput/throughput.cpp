@@ -13,7 +13,7 @@
 // Flags: --cell MM (0.5), --steps N (1000 at 0.5 mm; scaled by particle count if omitted),
 //        --repeats R (3), --threads T (2), --scheme musl|usl|usf (musl), --phases 1 (print
 //        the share of each phase of the step, from solver::timings(), on stderr, and of
-//        P2G's parts: the weights, the slabs, the clearing and scatters),
+//        P2G's parts: the weights, the slabs and the rest),
 //        --consistent-mass K (solver_options::consistent_mass_iterations, at most 5 at the
 //        default Courant number; 0 for the reference scene and under USL, 4 for the hmx scene),
 //        --volume-filter 1 (solver_options::volume_filter; the hmx scene only, with

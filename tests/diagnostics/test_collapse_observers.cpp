@@ -342,9 +342,9 @@ TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives eac
     }
     gimlet::diagnostics::hot_spot_workspace<S::vector> work;
     for (const double radius : {0.75e-3, 2e-3, 0.3e-3})
-        for (auto* sol : {&large[2], &small, &large[2]})
+        for (auto* sol : {&large[2], &small, &large[2]}) {
+            const double hottest_disc = gimlet::diagnostics::hot_spot(*sol, radius).temperature;
             for (const int peak : {0, 1, 2, 3}) {
-                const double hottest_disc = gimlet::diagnostics::hot_spot(*sol, radius).temperature;
                 const double above = peak == 0   ? -std::numeric_limits<double>::infinity()
                                      : peak == 1 ? std::nextafter(hottest_disc, 0.0)
                                      : peak == 2 ? hottest_disc
@@ -357,6 +357,7 @@ TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives eac
                 CHECK(reused.centre == fresh.centre);
                 CHECK(reused.particles == fresh.particles);
             }
+        }
 }
 
 TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and sums on 1, 2 and 3 threads", "[diagnostics][threads]") {

@@ -217,12 +217,12 @@ template <class Solver>
                            });
     const double* bin_max = block_max.data();
     // The hottest particle, the first of the largest temperatures: what the serial scan
-    // `if (T[i] > T[hottest]) hottest = i` from hottest = 0 gives (it keeps particle 0 where
-    // that one is NaN, and otherwise never takes a NaN), from the blocks' own in block order.
+    // `if (T[i] > T[hottest]) hottest = i` from hottest = 0 gives, from the blocks' own in
+    // block order. Neither takes a NaN; where particle 0's is NaN, no comparison with it
+    // holds, and both keep particle 0.
     std::size_t hottest = 0;
-    if (!std::isnan(double(T[0])))
-        for (const std::size_t h : block_hottest)
-            if (h != none && T[h] > T[hottest]) hottest = h;
+    for (const std::size_t h : block_hottest)
+        if (h != none && T[h] > T[hottest]) hottest = h;
     r.max_temperature = std::max(0.0, double(T[hottest]));
     std::size_t unused = 0;
     const double floor = std::max(disc(hottest, unused), above);
