@@ -165,11 +165,12 @@ TEST_CASE("hot_spot: the hottest disc's mass-weighted mean temperature", "[diagn
 
 TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying every centre", "[diagnostics]") {
     // Temperatures from a fixed pseudo-random sequence with a few hot clusters and many ties,
-    // then uniform temperatures at several disc radii (where a disc's mean of equal values can
-    // round above the hottest particle): the hottest disc equals a brute-force search over every
+    // then uniform temperatures at several disc radii (where a plain sum m T / sum m of equal
+    // values rounds above them): the hottest disc equals a brute-force search over every
     // particle centre, and the disc the diagnostic names holds the particles and the mean it
-    // reports. (Which of several tied discs wins depends on the last bit of each sum, so the
-    // centre itself is not compared.)
+    // reports. (Which of several nearly tied discs wins depends on the last bit of each sum, so
+    // the centre itself is not compared with the brute force's.) No disc is hotter than the
+    // hottest particle; uniform temperatures give exactly their value, at particle 0.
     auto sol = two_blocks(2, 2);
     auto& ps = sol.particles();
     std::uint64_t state = 12345;
@@ -210,6 +211,11 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
         INFO("trial " << trial << ", radius " << radius);
         REQUIRE(std::isfinite(r.temperature));
         CHECK(r.temperature == Approx(best).epsilon(1e-12));
+        CHECK(r.temperature <= r.max_temperature);
+        if (!random) {
+            CHECK(r.temperature == uniform[(trial - 3) / 3]);
+            CHECK(r.centre == ps[0].get<position>());
+        }
         CHECK(at_centre == Approx(r.temperature).epsilon(1e-12));
         CHECK(count == r.particles);
         // Sought above a running peak: below the hottest disc, the same disc bit for bit; at
@@ -250,9 +256,8 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
 
 TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties to the lowest index", "[diagnostics][threads]") {
     // 4 x 4 particles per cell (7,000 and more: the centres are then tried in parallel), with
-    // pseudo-random temperatures that tie often, then uniform ones (no centre skipped), then a
-    // power of two, where every disc's mean is exactly that temperature: all tie, and the disc
-    // around particle 0 must win.
+    // pseudo-random temperatures that tie often, then uniform ones, where every disc's mean is
+    // exactly that temperature: all tie, and the disc around particle 0 must win.
     std::vector<solver> runs = on_1_2_3_threads();
     REQUIRE(runs[0].particles().size() >= 4096);
     for (const int kind : {0, 1, 2}) {
@@ -263,8 +268,8 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
             for (auto& run : runs) run.particles()[i].get<temperature>() = t;
         }
         const auto one = gimlet::diagnostics::hot_spot(runs[0], 0.75e-3);
-        if (kind == 2) {
-            CHECK(one.temperature == 512.0);
+        if (kind != 0) {
+            CHECK(one.temperature == (kind == 1 ? 345.06126582478936 : 512.0));
             CHECK(one.centre == runs[0].particles()[0].get<position>());
         }
         for (std::size_t k = 1; k < runs.size(); ++k) {
@@ -486,25 +491,33 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
     CHECK(one.max_temperature == *std::max_element(ts.begin(), ts.end()));
     // The named disc's mean summed in the documented order, to the bit: bins of side `radius`
     // from the particles' lowest corner, the bins around the centre's with the first axis
-    // fastest, each bin's particles by index.
+    // fastest, each bin's particles by index, relative to the hottest particle of those bins.
     {
         typename particles_only<Dim>::vector lo = xs[0];
         for (const auto& x : xs) lo = lo.cwiseMin(x);
         auto bin_of = [&](const auto& x, int d) { return long(double(x[d] - lo[d]) / radius); };
         std::array<long, 3> centre_bin{}, at{};
         for (int d = 0; d < Dim; ++d) centre_bin[std::size_t(d)] = bin_of(one.centre, d);
-        double mass = 0, heat = 0;
-        for (at[2] = Dim == 3 ? centre_bin[2] - 1 : 0; at[2] <= (Dim == 3 ? centre_bin[2] + 1 : 0); ++at[2])
-            for (at[1] = centre_bin[1] - 1; at[1] <= centre_bin[1] + 1; ++at[1])
-                for (at[0] = centre_bin[0] - 1; at[0] <= centre_bin[0] + 1; ++at[0])
-                    for (std::size_t q = 0; q < st.size(); ++q) {
-                        bool in_bin = true;
-                        for (int d = 0; d < Dim; ++d) in_bin = in_bin && bin_of(xs[q], d) == at[std::size_t(d)];
-                        if (!in_bin || double((xs[q] - one.centre).squaredNorm()) > radius * radius) continue;
-                        mass += double(ms[q]);
-                        heat += double(ms[q]) * double(ts[q]);
-                    }
-        CHECK(heat / mass == one.temperature);
+        auto each_around = [&](auto&& f) {  // f(q) for the particles of the bins around, in order
+            for (at[2] = Dim == 3 ? centre_bin[2] - 1 : 0; at[2] <= (Dim == 3 ? centre_bin[2] + 1 : 0); ++at[2])
+                for (at[1] = centre_bin[1] - 1; at[1] <= centre_bin[1] + 1; ++at[1])
+                    for (at[0] = centre_bin[0] - 1; at[0] <= centre_bin[0] + 1; ++at[0])
+                        for (std::size_t q = 0; q < st.size(); ++q) {
+                            bool in_bin = true;
+                            for (int d = 0; d < Dim; ++d) in_bin = in_bin && bin_of(xs[q], d) == at[std::size_t(d)];
+                            if (in_bin) f(q);
+                        }
+        };
+        double ref = 0;
+        each_around([&](std::size_t q) { ref = std::max(ref, double(ts[q])); });
+        double mass = 0, excess = 0;
+        each_around([&](std::size_t q) {
+            if (double((xs[q] - one.centre).squaredNorm()) > radius * radius) return;
+            mass += double(ms[q]);
+            excess += double(ms[q]) * (double(ts[q]) - ref);
+        });
+        CHECK(ref + excess / mass == one.temperature);
+        CHECK(one.temperature <= ref);
     }
     for (const int threads : {2, 3}) {
         run.opt.threads = threads;

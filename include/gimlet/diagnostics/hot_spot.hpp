@@ -40,7 +40,7 @@ struct hot_spot_workspace {
     std::vector<Vector> block_lo, block_hi, sorted_x;
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
     std::vector<std::size_t> bin, cursor, start, block_hottest;
-    std::vector<double> block_max, sorted_m, sorted_mT;
+    std::vector<double> block_max, sorted_m, sorted_T;
 };
 
 /// Over every particle centre c, the mass-weighted mean temperature of the particles whose
@@ -48,13 +48,17 @@ struct hot_spot_workspace {
 /// Ties go to the lowest particle index. Needs the temperature field (a thermal policy that is
 /// on). Discs are not wrapped across periodic boundaries.
 ///
+/// Each mean is summed relative to a reference, the hottest particle T_b of the bins around c
+/// (below): T_b + sum m (T - T_b) / sum m. Every term is then at most zero, so the computed mean
+/// never exceeds T_b, and equal temperatures give exactly their value (a plain sum m T / sum m
+/// can round a few ulps above every particle). Where T_b is not finite the reference is 0.
+///
 /// `above` (K) is for a caller that tracks a running peak: only discs hotter than it are
-/// sought, so the centres that cannot hold one are skipped (before a hot spot forms, few
-/// centres can be skipped otherwise). A result hotter than `above` is the hottest disc, the
+/// sought, so the centres that cannot hold one are skipped too. A result hotter than `above` is the hottest disc, the
 /// same as without it; otherwise no disc is hotter than `above`, and the result names some
 /// cooler disc, or none (temperature -infinity, no particles). max_temperature is always the
-/// hottest particle. A NaN `above` is ignored (as -infinity); with +infinity (its margin is then
-/// infinite too) no centre is skipped at all and the hottest disc is returned.
+/// hottest particle. A NaN or +infinity `above` is ignored (as -infinity): the hottest disc is
+/// returned.
 ///
 /// `work` is scratch reused between calls (hot_spot_workspace of the solver's vector type);
 /// the overload without it makes its own.
@@ -117,10 +121,8 @@ template <class Solver>
         return k;
     };
     // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a disc
-    // sums is copied in that order (position, mass, mass times temperature), so that a disc
-    // reads its bins' particles contiguously; the products are those the sums formed before
-    // (where the compiler does not contract them into multiply-adds, as in a portable x86-64
-    // build; a native build may differ in the last bits, as it does anyway). Each block counts
+    // sums is copied in that order (position, mass, temperature), so that a disc reads its
+    // bins' particles contiguously. Each block counts
     // its particles per bin and takes its offsets within each bin in block order, so the order
     // is the serial sort's: by bin, then by index. (A count per block and bin: at most n / bins
     // blocks, so that the counts take no more room than the particles.)
@@ -149,17 +151,17 @@ template <class Solver>
     detail::block_offsets(cursor, sort_blocks, total, start);
     auto& sorted_x = work.sorted_x;
     auto& sorted_m = work.sorted_m;
-    auto& sorted_mT = work.sorted_mT;
+    auto& sorted_T = work.sorted_T;
     sorted_x.resize(n);
     sorted_m.resize(n);
-    sorted_mT.resize(n);
+    sorted_T.resize(n);
     detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         std::size_t* at = cursor.data() + b * total;
         for (std::size_t i = first; i < last; ++i) {
             const std::size_t j = at[bin[i]]++;
             sorted_x[j] = x[i];
             sorted_m[j] = double(m[i]);
-            sorted_mT[j] = double(m[i]) * double(T[i]);
+            sorted_T[j] = double(T[i]);
         }
     });
 
@@ -183,30 +185,6 @@ template <class Solver>
                     for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins[1] + y) * bins[0] + x0);
         }
     };
-    // The mean over the disc centred on particle i, summed in bin order (the same sums
-    // wherever it is asked for).
-    const double r2 = radius * radius;
-    auto disc = [&](std::size_t i, std::size_t& count) {
-        double mass = 0, heat = 0;
-        count = 0;
-        const vector c = x[i];
-        around(i, [&](std::size_t k) {
-            for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
-                if (double((sorted_x[j] - c).squaredNorm()) > r2) continue;
-                mass += sorted_m[j];
-                heat += sorted_mT[j];
-                ++count;
-            }
-        });
-        return heat / mass;
-    };
-    // A disc's mean is at most the hottest particle of the 3^dim bins around its centre, so a
-    // centre whose bins are all cooler than the disc around the hottest particle (or than
-    // `above`, whichever is hotter) cannot hold the hottest disc (nor tie with it) and is
-    // skipped: the result is that of trying every centre, at O(n) cost where the hot material
-    // is small. "Cooler" keeps a margin of 1e-9 of that floor: a computed mean of equal
-    // temperatures can round a few ulps above them, and without the margin every centre, the
-    // hottest particle's own included, could be skipped.
     // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks), in
     // the first block's entries; the bins split between the threads where there are many.
     detail::for_each_block(total, detail::observer_blocks(total * (sort_blocks - 1), threads), true, threads,
@@ -216,6 +194,32 @@ template <class Solver>
                                        block_max[k] = std::max(block_max[k], block_max[b * total + k]);
                            });
     const double* bin_max = block_max.data();
+    // The hottest particle of the 3^dim bins around particle i's (NaN never taken).
+    auto bound_at = [&](std::size_t i) {
+        double bound = -std::numeric_limits<double>::infinity();
+        around(i, [&](std::size_t b) { bound = std::max(bound, bin_max[b]); });
+        return bound;
+    };
+    // The mean over the disc centred on particle i, whose bins' hottest particle is `bound`,
+    // summed in bin order relative to it (the same sums wherever it is asked for): each term
+    // m (T - bound) is at most zero, and rounding keeps the sign of each operation, so the
+    // result is at most `bound`, exactly.
+    const double r2 = radius * radius;
+    auto disc = [&](std::size_t i, double bound, std::size_t& count) {
+        const double ref = std::isfinite(bound) ? bound : 0.0;
+        double mass = 0, excess = 0;
+        count = 0;
+        const vector c = x[i];
+        around(i, [&](std::size_t k) {
+            for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
+                if (double((sorted_x[j] - c).squaredNorm()) > r2) continue;
+                mass += sorted_m[j];
+                excess += sorted_m[j] * (sorted_T[j] - ref);
+                ++count;
+            }
+        });
+        return ref + excess / mass;
+    };
     // The hottest particle, the first of the largest temperatures: what the serial scan
     // `if (T[i] > T[hottest]) hottest = i` from hottest = 0 gives, from the blocks' own in
     // block order. Neither takes a NaN; where particle 0's is NaN, no comparison with it
@@ -224,11 +228,18 @@ template <class Solver>
     for (const std::size_t h : block_hottest)
         if (h != none && T[h] > T[hottest]) hottest = h;
     r.max_temperature = std::max(0.0, double(T[hottest]));
+    // A centre whose bins' hottest particle is cooler than the disc around the hottest particle
+    // (or than `above`, whichever is hotter: the floor) cannot hold the hottest disc, since its
+    // mean is at most that particle's temperature, exactly (above). Nor where that particle is
+    // as hot as the floor and the centre comes after the hottest particle, whose own disc is
+    // then tried and would win the tie. So the result is that of trying every centre, at O(n)
+    // cost where the hot material is small, and where the temperatures are uniform (before a
+    // hot spot forms) every centre after the hottest particle is skipped.
     std::size_t unused = 0;
-    const double floor = std::max(disc(hottest, unused), above);
-    const double margin = 1e-9 * std::abs(floor);
+    const double sought = above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
+    const double floor = std::max(disc(hottest, bound_at(hottest), unused), sought);
     // The centres are tried in parallel on the solver's threads (where the temperatures are
-    // nearly uniform, before a hot spot forms, few are skipped). The hottest disc, ties to the
+    // nearly but not exactly uniform, few are skipped). The hottest disc, ties to the
     // lowest index, is a maximum in a total order, so it does not depend on the thread count.
     struct best_disc {
         double mean = -std::numeric_limits<double>::infinity();
@@ -245,11 +256,10 @@ template <class Solver>
         GIMLET_OMP(for schedule(dynamic, 256) nowait)
         for (std::ptrdiff_t k = 0; k < count_n; ++k) {
             const auto i = static_cast<std::size_t>(k);
-            double bound = -std::numeric_limits<double>::infinity();
-            around(i, [&](std::size_t b) { bound = std::max(bound, bin_max[b]); });
-            if (bound < floor - margin) continue;
+            const double bound = bound_at(i);
+            if (bound < floor || (bound == floor && i > hottest)) continue;
             std::size_t count = 0;
-            const double mean = disc(i, count);
+            const double mean = disc(i, bound, count);
             if (local.beaten_by(mean, i)) local = {mean, i, count, true};
         }
         GIMLET_OMP(critical(gimlet_hot_spot))
