@@ -156,9 +156,19 @@ TEST_CASE("hot_spot: the hottest disc's mass-weighted mean temperature", "[diagn
     CHECK(r.particles == k);
     CHECK(r.temperature == Approx(300.0 + 700.0 / double(k)).epsilon(1e-12));
     CHECK(r.max_temperature == 1000.0);
-    // Every disc holding the hot particle and k particles ties; the lowest index wins, and
-    // all of them lie within the radius of it.
-    CHECK((r.centre - ps[hottest].get<position>()).norm() <= radius);
+    // Every disc holding the hot particle and k particles ties to the bit (the same k - 1 terms
+    // m (300 - 1000) in the same order, and an exact zero); they are all tried, their bins
+    // holding the hot particle, and the lowest index wins.
+    std::size_t first_tie = ps.size();
+    for (std::size_t i = 0; i < ps.size() && first_tie == ps.size(); ++i) {
+        const S::vector c = ps[i].get<position>();
+        if ((ps[hottest].get<position>() - c).squaredNorm() > radius * radius) continue;
+        std::size_t count = 0;
+        for (std::size_t q = 0; q < ps.size(); ++q) count += (ps[q].get<position>() - c).squaredNorm() <= radius * radius;
+        if (count == k) first_tie = i;
+    }
+    REQUIRE(first_tie != hottest);  // a tie the rule decides
+    CHECK(r.centre == ps[first_tie].get<position>());
 
     CHECK_THROWS_WITH(gimlet::diagnostics::hot_spot(sol, -1.0), Catch::Contains("hot-spot radius"));
 }
@@ -234,7 +244,7 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
             CHECK_FALSE(a.temperature > above);
             CHECK(a.max_temperature == r.max_temperature);
         }
-        // NaN is ignored; +infinity skips no centre: both give the disc the default gives.
+        // NaN and +infinity are ignored (as -infinity): both give the disc the default gives.
         for (const double above : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
             const auto a = gimlet::diagnostics::hot_spot(sol, radius, above);
             INFO("above " << above);
@@ -257,7 +267,7 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
 TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties to the lowest index", "[diagnostics][threads]") {
     // 4 x 4 particles per cell (7,000 and more: the centres are then tried in parallel), with
     // pseudo-random temperatures that tie often, then uniform ones, where every disc's mean is
-    // exactly that temperature: all tie, and the disc around particle 0 must win.
+    // exactly that temperature: particle 0's disc is named, every later centre skipped.
     std::vector<solver> runs = on_1_2_3_threads();
     REQUIRE(runs[0].particles().size() >= 4096);
     for (const int kind : {0, 1, 2}) {
@@ -293,8 +303,7 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
     // The hottest particle with NaN temperatures (the solver would have stopped; a user's
     // field need not come from it): a NaN is never taken, on every thread count, also where
     // it opens a block of the parallel pass (its first particle on 2 and 3 threads) and the
-    // hottest particle lies in that block, just after it. A NaN at particle 0 is kept, as the
-    // serial scan from particle 0 keeps it: the hottest temperature then reads 0.
+    // hottest particle lies in that block, just after it, and where particle 0's is NaN.
     const std::size_t n = runs[0].particles().size();
     const std::size_t hottest = (n + 1) / 2 + 1;  // in block 1 of 2 and of 3
     for (const bool nan_first : {false, true}) {
@@ -306,8 +315,17 @@ TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties
                         : i == hottest ? 500.0 : 300.0 + double(i % 89);
         for (std::size_t k = 0; k < runs.size(); ++k) {
             INFO("NaN temperatures, threads " << k + 1 << ", NaN at particle 0: " << nan_first);
-            CHECK(gimlet::diagnostics::hot_spot(runs[k], 0.75e-3).max_temperature == (nan_first ? 0.0 : 500.0));
+            CHECK(gimlet::diagnostics::hot_spot(runs[k], 0.75e-3).max_temperature == 500.0);
         }
+    }
+    // Every temperature NaN: no hottest particle (NaN) and no disc.
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        for (std::size_t i = 0; i < n; ++i) runs[k].particles()[i].get<temperature>() = std::numeric_limits<double>::quiet_NaN();
+        const auto r = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3);
+        INFO("every temperature NaN, threads " << k + 1);
+        CHECK(std::isnan(r.max_temperature));
+        CHECK(r.temperature == -std::numeric_limits<double>::infinity());
+        CHECK(r.particles == 0);
     }
 }
 
@@ -508,8 +526,9 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
                             if (in_bin) f(q);
                         }
         };
-        double ref = 0;
+        double ref = -std::numeric_limits<double>::infinity();
         each_around([&](std::size_t q) { ref = std::max(ref, double(ts[q])); });
+        if (!std::isfinite(ref)) ref = 0;
         double mass = 0, excess = 0;
         each_around([&](std::size_t q) {
             if (double((xs[q] - one.centre).squaredNorm()) > radius * radius) return;
@@ -529,6 +548,36 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
             CHECK(r.particles == one.particles);
             CHECK(r.max_temperature == one.max_temperature);
         }
+    }
+}
+
+TEST_CASE("hot_spot: a disc before the hottest particle that ties with its disc is not skipped", "[diagnostics]") {
+    // Unit masses. Particles 0-2 at 400 K, close together: their discs hold only them, and
+    // their bins' hottest particle is 400 K. Far away, particle 3 at 1000 K with six at 300 K
+    // within 0.01 mm of it: every disc there holds all seven, (1000 + 6 x 300) / 7 = 400 K
+    // exactly, and its bins' hottest particle is 1000 K. All ten discs tie at 400 K, the floor
+    // is particle 3's disc, and particles 0-2, whose bins are as hot as the floor and which
+    // come before particle 3, must be tried: the lowest index, particle 0, wins.
+    particles_only<2> run;
+    auto& st = run.store;
+    auto add = [&](double x, double y, double t) {
+        auto p = st[st.add()];
+        p.get<position>() = particles_only<2>::vector(x, y);
+        p.get<gimlet::fields::mass>() = 1.0;
+        p.get<temperature>() = t;
+    };
+    add(0.0, 0.0, 400.0);
+    add(0.1e-3, 0.0, 400.0);
+    add(0.0, 0.1e-3, 400.0);
+    add(50e-3, 0.0, 1000.0);
+    for (int k = 0; k < 6; ++k) add(50e-3 + 0.01e-3 * std::cos(k * 1.0471975511965976), 0.01e-3 * std::sin(k * 1.0471975511965976), 300.0);
+    for (const double above : {-std::numeric_limits<double>::infinity(), 399.0}) {
+        const auto r = gimlet::diagnostics::hot_spot(run, 1e-3, above);
+        INFO("above " << above);
+        CHECK(r.temperature == 400.0);
+        CHECK(r.centre == st[0].get<position>());
+        CHECK(r.particles == 3);
+        CHECK(r.max_temperature == 1000.0);
     }
 }
 

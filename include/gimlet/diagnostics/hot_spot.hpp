@@ -48,17 +48,21 @@ struct hot_spot_workspace {
 /// Ties go to the lowest particle index. Needs the temperature field (a thermal policy that is
 /// on). Discs are not wrapped across periodic boundaries.
 ///
-/// Each mean is summed relative to a reference, the hottest particle T_b of the bins around c
-/// (below): T_b + sum m (T - T_b) / sum m. Every term is then at most zero, so the computed mean
-/// never exceeds T_b, and equal temperatures give exactly their value (a plain sum m T / sum m
-/// can round a few ulps above every particle). Where T_b is not finite the reference is 0.
+/// Each mean is summed relative to a reference T_b, the hottest particle of the search's bins
+/// around c (bins of side `radius`; the 3^dim around c's hold the disc, and may hold hotter
+/// particles outside it): T_b + sum m (T - T_b) / sum m. With positive masses every term is then
+/// at most zero, so the computed mean never exceeds T_b; where every particle of those bins has
+/// one temperature (a uniform field) it is exactly that temperature (a plain sum m T / sum m can
+/// round a few ulps above every particle). Where T_b is not finite the reference is 0.
 ///
 /// `above` (K) is for a caller that tracks a running peak: only discs hotter than it are
-/// sought, so the centres that cannot hold one are skipped too. A result hotter than `above` is the hottest disc, the
-/// same as without it; otherwise no disc is hotter than `above`, and the result names some
-/// cooler disc, or none (temperature -infinity, no particles). max_temperature is always the
-/// hottest particle. A NaN or +infinity `above` is ignored (as -infinity): the hottest disc is
-/// returned.
+/// sought, so the centres that cannot hold one are skipped too. A result hotter than `above` is
+/// the hottest disc, the same as without it; otherwise no disc is hotter than `above`, and the
+/// result names some cooler disc, or none (temperature -infinity, no particles). A NaN or
+/// +infinity `above` is ignored (as -infinity): the hottest disc is returned.
+///
+/// max_temperature is the hottest particle's temperature, NaN never taken (NaN where every
+/// temperature is NaN; there is then no disc).
 ///
 /// `work` is scratch reused between calls (hot_spot_workspace of the solver's vector type);
 /// the overload without it makes its own.
@@ -122,10 +126,10 @@ template <class Solver>
     };
     // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a disc
     // sums is copied in that order (position, mass, temperature), so that a disc reads its
-    // bins' particles contiguously. Each block counts
-    // its particles per bin and takes its offsets within each bin in block order, so the order
-    // is the serial sort's: by bin, then by index. (A count per block and bin: at most n / bins
-    // blocks, so that the counts take no more room than the particles.)
+    // bins' particles contiguously. Each block counts its particles per bin and takes its
+    // offsets within each bin in block order, so the order is the serial sort's: by bin, then
+    // by index. (A count per block and bin: at most n / bins blocks, so that the counts take no
+    // more room than the particles.)
     const std::size_t sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
     // Every entry of bin, cell and the copies is written before it is read.
     auto& start = work.start;
@@ -201,9 +205,11 @@ template <class Solver>
         return bound;
     };
     // The mean over the disc centred on particle i, whose bins' hottest particle is `bound`,
-    // summed in bin order relative to it (the same sums wherever it is asked for): each term
-    // m (T - bound) is at most zero, and rounding keeps the sign of each operation, so the
-    // result is at most `bound`, exactly.
+    // summed in bin order relative to it (the same sums wherever it is asked for). Rounding is
+    // monotone and 0 is representable: T - bound <= 0 rounds to <= 0, and so do its product
+    // with m >= 0, the sum of such terms (a multiply-add too) and its quotient by the mass, so
+    // the result is at most `bound`, exactly. (Finite temperatures whose differences do not
+    // overflow; the solver stops on a non-finite one.)
     const double r2 = radius * radius;
     auto disc = [&](std::size_t i, double bound, std::size_t& count) {
         const double ref = std::isfinite(bound) ? bound : 0.0;
@@ -220,24 +226,31 @@ template <class Solver>
         });
         return ref + excess / mass;
     };
-    // The hottest particle, the first of the largest temperatures: what the serial scan
-    // `if (T[i] > T[hottest]) hottest = i` from hottest = 0 gives, from the blocks' own in
-    // block order. Neither takes a NaN; where particle 0's is NaN, no comparison with it
-    // holds, and both keep particle 0.
-    std::size_t hottest = 0;
+    // The hottest particle, the first of the largest temperatures, NaN never taken: the blocks'
+    // own, merged in block order. Where every temperature is NaN, every disc's mean is NaN and
+    // none is named.
+    std::size_t hottest = none;
     for (const std::size_t h : block_hottest)
-        if (h != none && T[h] > T[hottest]) hottest = h;
-    r.max_temperature = std::max(0.0, double(T[hottest]));
+        if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
+    if (hottest == none) {
+        r.max_temperature = std::numeric_limits<double>::quiet_NaN();
+        r.temperature = -std::numeric_limits<double>::infinity();
+        return r;
+    }
+    r.max_temperature = double(T[hottest]);
     // A centre whose bins' hottest particle is cooler than the disc around the hottest particle
     // (or than `above`, whichever is hotter: the floor) cannot hold the hottest disc, since its
     // mean is at most that particle's temperature, exactly (above). Nor where that particle is
     // as hot as the floor and the centre comes after the hottest particle, whose own disc is
     // then tried and would win the tie. So the result is that of trying every centre, at O(n)
     // cost where the hot material is small, and where the temperatures are uniform (before a
-    // hot spot forms) every centre after the hottest particle is skipped.
-    std::size_t unused = 0;
+    // hot spot forms) every centre after the hottest particle is skipped. The hottest
+    // particle's disc is summed once and its bits reused in the loop, so the floor and that
+    // disc are the same number whatever the compiler does with the two call sites.
+    std::size_t hottest_count = 0;
+    const double hottest_mean = disc(hottest, bound_at(hottest), hottest_count);
     const double sought = above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
-    const double floor = std::max(disc(hottest, bound_at(hottest), unused), sought);
+    const double floor = std::max(hottest_mean, sought);
     // The centres are tried in parallel on the solver's threads (where the temperatures are
     // nearly but not exactly uniform, few are skipped). The hottest disc, ties to the
     // lowest index, is a maximum in a total order, so it does not depend on the thread count.
@@ -258,8 +271,8 @@ template <class Solver>
             const auto i = static_cast<std::size_t>(k);
             const double bound = bound_at(i);
             if (bound < floor || (bound == floor && i > hottest)) continue;
-            std::size_t count = 0;
-            const double mean = disc(i, bound, count);
+            std::size_t count = hottest_count;
+            const double mean = i == hottest ? hottest_mean : disc(i, bound, count);
             if (local.beaten_by(mean, i)) local = {mean, i, count, true};
         }
         GIMLET_OMP(critical(gimlet_hot_spot))
