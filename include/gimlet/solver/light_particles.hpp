@@ -82,7 +82,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     light_particle_.assign(particles_.size(), lightness::none);
     const real theta = real(options_.light_particle_ratio);
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
     for (std::ptrdiff_t k = 0; k < n; ++k) {
         const auto q = static_cast<std::size_t>(k);
         real densest = 0;

@@ -35,7 +35,7 @@ std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, co
     std::ptrdiff_t failed = n, first_bad = n;
     std::exception_ptr error;
     const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
-    GIMLET_OMP(parallel for schedule(dynamic, particle_chunk / material_group) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+    GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
     for (std::ptrdiff_t g = 0; g < groups; ++g) {
         const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
         const bool paired = update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg);

@@ -106,7 +106,9 @@ private:
         for (const auto& slabs : colour_slabs_) {
             const auto count = static_cast<std::ptrdiff_t>(slabs.size());
             if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
-            GIMLET_OMP(for schedule(dynamic, 1))
+            // Each thread the same slabs of the colour in every pass: their particles and nodes
+            // stay in its cache (solver.hpp says why particle loops are static too).
+            GIMLET_OMP(for schedule(static))
             for (std::ptrdiff_t j = 0; j < count; ++j) {
                 const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
                 if (keep && !keep[s]) continue;

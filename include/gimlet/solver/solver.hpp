@@ -188,7 +188,7 @@ public:
         // The guards met on the way (health_events), counted once the step is taken.
         std::uint64_t n0 = 0, n1 = 0, n2 = 0;
         std::ptrdiff_t f0 = n, f1 = n, f2 = n;
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) {
             const auto p = particles_[static_cast<std::size_t>(i)];
             unsigned guards = 0;
@@ -253,12 +253,16 @@ private:
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
-    // Particle loops hand out chunks of this many particles on demand rather than one fixed
-    // share per thread: on a machine where another process holds a core, the thread that runs
-    // takes over the chunks of the one that waits, instead of idling at the end of the loop.
-    // Every particle's result is independent of which thread runs it, so this costs no
-    // determinism.
-    static constexpr int particle_chunk = 512;
+    // Particle loops give each thread one fixed share (schedule(static): the same share in
+    // every loop over the same particles), and the slab passes each thread the same slabs of
+    // a colour in every pass, so a particle's data and a slab's nodes stay in one core's cache
+    // from pass to pass. Shares handed out on demand moved about half of them between cores
+    // in every pass, and on a 2-core host where that costs as much as the work, 2 threads ran
+    // the elastic step no faster than 1 (docs/performance.md, "Each thread its own
+    // particles"). The price is on a busy machine: a thread that waits for its core holds
+    // up the others at the end of the loop. Every particle's result, and every node's sum
+    // (slab by slab, in particle order), is independent of which thread runs it, so the
+    // schedule costs no determinism.
     // The same for loops over grid nodes, whose bodies cost a few nanoseconds each: a pass over
     // 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the particles'
     // threshold the HMX scene's 79,000 entries ran serially; with this one its 2-thread run took
@@ -477,7 +481,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
         slabs_.resize(particles_.size());
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t i = 0; i < n; ++i) compute_stencil(static_cast<std::size_t>(i));
     }
 
@@ -614,7 +618,7 @@ private:
             return;
         }
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             const auto p = particles_[i];
@@ -641,7 +645,7 @@ private:
     void contact_hook() {
         if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
             for (std::ptrdiff_t k = 0; k < n; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
@@ -673,7 +677,7 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             grid_.wrap(x[i]);

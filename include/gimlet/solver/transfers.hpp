@@ -290,7 +290,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, boo
         for_each_particle_by_slab(update);
     } else {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) update(static_cast<std::size_t>(k));
     }
 }

@@ -74,7 +74,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
 
         // Each particle's weight on the nodes above the mass cut-off (the weights below are
         // renormalised by it, so that a particle's weights over those nodes sum to one).
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             auto at = entries(i);
@@ -101,7 +101,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         // vf_particle_[p] = sum_i (S_ip / heavy_p) c_i over the nodes above the cut-off (own(p)
         // for a particle that reaches none).
         auto gather = [&](const std::vector<real>& c, auto&& own) {
-            GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
             for (std::ptrdiff_t k = 0; k < n; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 if (!(heavy[i] > 0)) {
@@ -149,7 +149,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         es_change.assign(particles_.size(), 0.0);
         std::ptrdiff_t failed = n;
         std::exception_ptr error;
-        GIMLET_OMP(parallel for schedule(dynamic, particle_chunk) num_threads(threads()) if (n >= parallel_threshold))
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
         for (std::ptrdiff_t k = 0; k < n; ++k) {
             const auto i = static_cast<std::size_t>(k);
             const real j_old = F[i].determinant(), j_new = vf_particle_[i];
