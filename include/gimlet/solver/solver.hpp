@@ -250,24 +250,28 @@ public:
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
+    // Particle loops give each thread one fixed share (schedule(static)), and each slab pass
+    // gives each thread the same slabs of a colour. With GCC's and LLVM's OpenMP runtimes the
+    // same thread gets the same share in every loop over the same particles (the standard
+    // promises it only within one parallel region; the material pass's groups of two shift a
+    // boundary by at most a group), so a particle's data and a slab's nodes stay near one core,
+    // in its caches, from pass to pass (binding the threads, OMP_PROC_BIND and OMP_PLACES,
+    // keeps each thread on its core). Shares handed out on demand moved about half of them
+    // between the cores in every pass on 2 threads, and on a 2-core host where that cost as
+    // much as the work, 2 threads ran the elastic step no faster than 1 (docs/performance.md,
+    // "Each thread its own particles"). The price is on a busy machine: a thread that waits
+    // for its core holds up the others at the end of the loop. Every particle's result, and
+    // every node's sum (slab by slab, in particle order), is independent of which thread runs
+    // it, so the schedule costs no determinism.
+    //
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
-    // Particle loops give each thread one fixed share (schedule(static): the same share in
-    // every loop over the same particles), and the slab passes each thread the same slabs of
-    // a colour in every pass, so a particle's data and a slab's nodes stay in one core's cache
-    // from pass to pass. Shares handed out on demand moved about half of them between cores
-    // in every pass, and on a 2-core host where that costs as much as the work, 2 threads ran
-    // the elastic step no faster than 1 (docs/performance.md, "Each thread its own
-    // particles"). The price is on a busy machine: a thread that waits for its core holds
-    // up the others at the end of the loop. Every particle's result, and every node's sum
-    // (slab by slab, in particle order), is independent of which thread runs it, so the
-    // schedule costs no determinism.
-    // The same for loops over grid nodes, whose bodies cost a few nanoseconds each: a pass over
-    // 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the particles'
-    // threshold the HMX scene's 79,000 entries ran serially; with this one its 2-thread run took
-    // 0.90 of the time, whole process, and scenes of 20,000 entries lost nothing
-    // (docs/performance.md).
+    // A threshold likewise for loops over grid nodes, whose bodies cost a few nanoseconds each: a
+    // pass over 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the
+    // particles' threshold the HMX scene's 79,000 entries ran serially; with this one its
+    // 2-thread run took 0.90 of the time, whole process, and scenes of 20,000 entries lost
+    // nothing (docs/performance.md).
     static constexpr std::ptrdiff_t node_parallel_threshold = 4 * parallel_threshold;
 
     // Where particle i's mass goes in the nodal arrays (fields x nodes) at each node of its
