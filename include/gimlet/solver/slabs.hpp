@@ -6,6 +6,7 @@
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
 
 #include <algorithm>
 #include <array>
@@ -101,21 +102,34 @@ public:
 private:
     // for_each over the slabs s with keep[s] != 0 (all where keep is null).
     template <class F>
-    void for_each_kept(const std::uint8_t* keep, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
-        GIMLET_OMP(parallel num_threads(threads) if (parallel))
-        for (const auto& slabs : colour_slabs_) {
-            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
-            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
-            // Each thread the same slabs of the colour in every pass, so their particles and
-            // nodes stay near its core (solver.hpp, above parallel_threshold, says why). The
-            // slabs are split by count, not by the particles they hold (a split by particles
-            // measured no faster on 2 threads: docs/performance.md, "Each thread its own
-            // particles").
-            GIMLET_OMP(for schedule(static))
-            for (std::ptrdiff_t j = 0; j < count; ++j) {
-                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
-                if (keep && !keep[s]) continue;
-                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+    void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F&& f) const {
+        auto slab = [&](std::size_t colour, std::ptrdiff_t j) {
+            const auto s = static_cast<std::size_t>(colour_slabs_[colour][static_cast<std::size_t>(j)]);
+            if (keep && !keep[s]) return;
+            for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+        };
+        auto count = [&](std::size_t colour) { return static_cast<std::ptrdiff_t>(colour_slabs_[colour].size()); };
+        if (!parallel || threads <= 1) {
+            for (std::size_t c = 0; c < colour_slabs_.size(); ++c)
+                for (std::ptrdiff_t j = 0; j < count(c); ++j) slab(c, j);
+            return;
+        }
+        // Each thread the same slabs of a colour in every pass, so their particles and nodes
+        // stay near its core, and a thread done early takes over slabs of the others' shares
+        // (thread_shares). A colour's slabs are shared by count, not by the particles they
+        // hold (a split by particles measured no faster on 2 threads: docs/performance.md,
+        // "Each thread its own particles").
+        std::array<thread_shares, 3> shares{thread_shares(count(0), threads), thread_shares(count(1), threads),
+                                            thread_shares(count(2), threads)};
+        std::size_t last = 0;  // the last colour with slabs: no barrier after it but the region's
+        for (std::size_t c = 0; c < colour_slabs_.size(); ++c)
+            if (count(c) > 0) last = c;
+        GIMLET_OMP(parallel num_threads(threads))
+        for (std::size_t c = 0; c <= last; ++c) {
+            if (count(c) == 0) continue;  // the same for every thread: no barrier for an empty colour
+            shares[c].for_each([&](std::ptrdiff_t j) { slab(c, j); });
+            if (c < last) {
+                GIMLET_OMP(barrier)
             }
         }
     }

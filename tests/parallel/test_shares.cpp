@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// The loop schedule (core/detail/shares.hpp): every item runs exactly once, on any team
+// (smaller than the shares too), and a thread that does not come takes nothing with it: the
+// others take over its whole share.
+#include <gimlet/gimlet.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace {
+
+// How often each item of [0, n) ran on a team of `team` threads over `shares` shares.
+std::vector<int> runs(std::ptrdiff_t n, int shares, [[maybe_unused]] int team) {
+    std::vector<std::atomic<int>> count(static_cast<std::size_t>(n));
+    gimlet::detail::thread_shares s(n, shares);
+    GIMLET_OMP(parallel num_threads(team))
+    s.for_each([&](std::ptrdiff_t i) { count[static_cast<std::size_t>(i)].fetch_add(1, std::memory_order_relaxed); });
+    std::vector<int> out;
+    for (auto& c : count) out.push_back(c.load());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("thread_shares runs every item once, on teams of any size", "[parallel][shares]") {
+    for (std::ptrdiff_t n : {0, 1, 5, 17, 1000, 100003})
+        for (int shares : {1, 2, 3, 8})
+            for (int team : {1, 2, 3, 8}) {
+                CAPTURE(n, shares, team);
+                const std::vector<int> count = runs(n, shares, team);
+                for (std::size_t i = 0; i < count.size(); ++i) {
+                    CAPTURE(i);
+                    REQUIRE(count[i] == 1);
+                }
+            }
+    std::size_t calls = 0;
+    gimlet::detail::parallel_for(3, 1, false, [&](std::ptrdiff_t i) { REQUIRE(i == std::ptrdiff_t(calls++)); });
+    REQUIRE(calls == 3);  // in order on one thread
+}
+
+TEST_CASE("thread_shares: a thread that does not come has its share taken over", "[parallel][shares]") {
+    // Thread 0 of a team of two waits until every item is done before it asks for any: thread 1
+    // must take over all of share 0. (Where the runtime gives one thread, thread 0 runs all.)
+    const std::ptrdiff_t n = 20000;
+    gimlet::detail::thread_shares s(n, 2);
+    std::vector<int> by(static_cast<std::size_t>(n), -1);
+    std::atomic<std::ptrdiff_t> done{0};
+    int team = 1;
+    GIMLET_OMP(parallel num_threads(2))
+    {
+        int me = 0;
+#if defined(_OPENMP)
+        me = omp_get_thread_num();
+        GIMLET_OMP(single)
+        team = omp_get_num_threads();
+#endif
+        if (me == 0 && team == 2) {
+            const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+            while (done.load() < n && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+        }
+        s.for_each([&](std::ptrdiff_t i) {
+            by[static_cast<std::size_t>(i)] = me;
+            done.fetch_add(1);
+        });
+    }
+    REQUIRE(done.load() == n);
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        CAPTURE(i, team);
+        REQUIRE(by[static_cast<std::size_t>(i)] == (team == 2 ? 1 : 0));
+    }
+}
