@@ -261,7 +261,7 @@ private:
     // pass, and on a 2-core host where that cost as much as the work, 2 threads ran the elastic
     // step no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
     // machine) or a share of costlier particles no longer holds up the loop, as fixed shares
-    // alone did: on 16 cores they ran 0.70-0.86 as fast as shares handed out on demand
+    // alone did: on 16 cores they ran at 0.59-1.06 of the rate of shares handed out on demand
     // (docs/performance.md, "Each thread its own particles" and "Shares that are taken over").
     // Every particle's result, and every node's sum (slab by slab, in particle order), is
     // independent of which thread runs it, so the schedule costs no determinism.
