@@ -41,6 +41,12 @@ TEST_CASE("thread_shares runs every item once, on teams of any size", "[parallel
     std::size_t calls = 0;
     gimlet::detail::parallel_for(3, 1, false, [&](std::ptrdiff_t i) { REQUIRE(i == std::ptrdiff_t(calls++)); });
     REQUIRE(calls == 3);  // in order on one thread
+    std::vector<std::atomic<int>> count(1001);
+    gimlet::detail::parallel_for(1001, 3, true, [&](std::ptrdiff_t i) { count[std::size_t(i)].fetch_add(1); });
+    for (std::size_t i = 0; i < count.size(); ++i) {
+        CAPTURE(i);
+        REQUIRE(count[i].load() == 1);
+    }
 }
 
 TEST_CASE("thread_shares: a thread that does not come has its share taken over", "[parallel][shares]") {
@@ -60,7 +66,7 @@ TEST_CASE("thread_shares: a thread that does not come has its share taken over",
         team = omp_get_num_threads();
 #endif
         if (me == 0 && team == 2) {
-            const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+            const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
             while (done.load() < n && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
         }
         s.for_each([&](std::ptrdiff_t i) {

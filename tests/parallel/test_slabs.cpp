@@ -2,13 +2,18 @@
 // The scatter's slab schedule (solver/slabs.hpp): for_each_reaching, which the contact's reach
 // pass uses to skip the slabs that reach no shared node, must still visit every particle whose
 // stencil touches a flagged node row, on a periodic axis across the seam too, in for_each's
-// order, and on any thread count.
+// order, and on any thread count; and on several threads the colours never overlap.
 #include <gimlet/gimlet.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -79,6 +84,43 @@ TEST_CASE("slab schedule: for_each_reaching visits every particle whose stencil 
             check_reaching<2>(rows, periodic, 3);  // uGIMP, cpGIMP, quadratic B-spline
             check_reaching<2>(rows, periodic, 2);
             check_reaching<3>(rows, periodic, 4);  // cubic B-spline
+        }
+    }
+}
+
+TEST_CASE("slab schedule: on several threads, no slab of the next colour starts before the last of a colour ends",
+          "[parallel][slabs]") {
+    // Slabs of one colour share no node, so the scatter is deterministic only if the colours
+    // never overlap (the barrier between them in for_each_kept). The first particle of slab 0
+    // is slow, so that a thread without that barrier would start the next colour meanwhile.
+    for (bool periodic : {false, true}) {
+        const int rows = 2 * 21;  // 21 slabs of 2 rows: on a periodic axis the last is a third colour
+        gimlet::detail::slab_schedule<2> slabs;
+        slabs.set_up(rows, periodic);
+        const int count = rows / 2;
+        const std::size_t n = std::size_t(4 * count);
+        slabs.resize(n);
+        for (std::size_t i = 0; i < n; ++i) slabs.assign(i, int(2 * (i % std::size_t(count))));
+        slabs.bucket();
+        auto colour = [&](std::size_t i) {
+            const int s = int(i % std::size_t(count));
+            return periodic && count % 2 == 1 && s == count - 1 ? 2 : s % 2;
+        };
+        std::atomic<long> clock{0};
+        std::vector<long> start(n), end(n);
+        slabs.for_each(true, 2, [&](std::size_t i) {
+            start[i] = clock.fetch_add(1);
+            if (i == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            end[i] = clock.fetch_add(1);
+        });
+        for (int c = 0; c + 1 < 3; ++c) {
+            long last_end = -1, first_start = std::numeric_limits<long>::max();
+            for (std::size_t i = 0; i < n; ++i) {
+                if (colour(i) == c) last_end = std::max(last_end, end[i]);
+                if (colour(i) > c) first_start = std::min(first_start, start[i]);
+            }
+            CAPTURE(periodic, c);
+            CHECK(last_end < first_start);
         }
     }
 }

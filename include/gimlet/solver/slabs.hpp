@@ -55,7 +55,7 @@ public:
     /// `threads` threads if `parallel`: each block of particles counts its slabs, takes its
     /// offsets within each slab in block order and places its particles, so the order is that
     /// of the serial sort whatever the thread count.
-    void bucket([[maybe_unused]] bool parallel = false, [[maybe_unused]] int threads = 1) {
+    void bucket(bool parallel = false, int threads = 1) {
         // A block per 4096 particles, at most 64 blocks (the offsets are a serial pass over
         // blocks x slabs); the order does not depend on the blocks.
         const std::size_t n = slab_of_.size(), slabs = std::size_t(slabs_);
@@ -109,22 +109,20 @@ private:
             for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
         };
         auto count = [&](std::size_t colour) { return static_cast<std::ptrdiff_t>(colour_slabs_[colour].size()); };
-        if (!parallel || threads <= 1) {
-            for (std::size_t c = 0; c < colour_slabs_.size(); ++c)
-                for (std::ptrdiff_t j = 0; j < count(c); ++j) slab(c, j);
-            return;
-        }
         // Each thread the same slabs of a colour in every pass, so their particles and nodes
         // stay near its core, and a thread done early takes over slabs of the others' shares
         // (thread_shares). A colour's slabs are shared by count, not by the particles they
         // hold (a split by particles measured no faster on 2 threads: docs/performance.md,
         // "Each thread its own particles").
-        std::array<thread_shares, 3> shares{thread_shares(count(0), threads), thread_shares(count(1), threads),
-                                            thread_shares(count(2), threads)};
+        // One thread where not `parallel`: one share a colour, in order, through the same
+        // region, so that f's body is compiled once (shares.hpp, parallel_for).
+        std::array<thread_shares, 3> shares{thread_shares(count(0), threads, parallel),
+                                            thread_shares(count(1), threads, parallel),
+                                            thread_shares(count(2), threads, parallel)};
         std::size_t last = 0;  // the last colour with slabs: no barrier after it but the region's
         for (std::size_t c = 0; c < colour_slabs_.size(); ++c)
             if (count(c) > 0) last = c;
-        GIMLET_OMP(parallel num_threads(threads))
+        GIMLET_OMP(parallel num_threads(threads) if (parallel))
         for (std::size_t c = 0; c <= last; ++c) {
             if (count(c) == 0) continue;  // the same for every thread: no barrier for an empty colour
             shares[c].for_each([&](std::ptrdiff_t j) { slab(c, j); });

@@ -252,17 +252,20 @@ public:
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
-    // Every particle and node loop runs in detail::thread_shares' schedule: each thread a fixed
-    // share, the same in every loop over the same items, and a thread done early takes chunks
-    // of the shares not yet done; each slab pass likewise gives each thread the same slabs of a
-    // colour. So a particle's data and a slab's nodes stay near one core, in its caches, from
-    // pass to pass (binding the threads, OMP_PROC_BIND and OMP_PLACES, keeps each thread on its
-    // core): shares handed out on demand moved about half of them between the cores in every
-    // pass, and on a 2-core host where that cost as much as the work, 2 threads ran the elastic
-    // step no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
-    // machine) or a share of costlier particles no longer holds up the loop, as fixed shares
-    // alone did: on 16 cores they ran at 0.59-1.06 of the rate of shares handed out on demand
-    // (docs/performance.md, "Each thread its own particles" and "Shares that are taken over").
+    // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
+    // thread a fixed share, the same in every loop over the same items, and a thread done early
+    // takes chunks of the shares not yet done; each slab pass likewise gives each thread the
+    // same slabs of a colour. (The same thread number is the same thread in every parallel
+    // region with GCC's and LLVM's runtimes; the OpenMP standard does not promise it.) So a
+    // particle's data and a slab's nodes stay near one core, in its caches, from pass to pass
+    // (binding the threads, OMP_PROC_BIND and OMP_PLACES, keeps each thread on its core):
+    // shares handed out on demand moved about half of them between the cores in every pass,
+    // and on a 2-core host where that cost as much as the work, 2 threads ran the elastic step
+    // no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
+    // machine) or a share of costlier particles holds up the loop by no more than the chunk its
+    // thread has claimed, where fixed shares alone waited for the whole share: on 16 cores
+    // those ran at 0.59-1.06 of the rate of shares handed out on demand (docs/performance.md,
+    // "Each thread its own particles" and "Shares that are taken over").
     // Every particle's result, and every node's sum (slab by slab, in particle order), is
     // independent of which thread runs it, so the schedule costs no determinism.
     //
