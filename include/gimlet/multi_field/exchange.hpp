@@ -11,7 +11,6 @@
 #include "gimlet/contact/node.hpp"
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/detail/omp.hpp"
-#include "gimlet/core/detail/shares.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/grid.hpp"
 #include "gimlet/multi_field/correct.hpp"
@@ -96,7 +95,9 @@ public:
             return k;
         };
         const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-        gimlet::detail::parallel_for(blocks_n, threads, parallel, [&](std::ptrdiff_t b) {
+        (void)threads, (void)parallel;  // read only by the OpenMP pragmas
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
             block_counts& c = block_count_[std::size_t(b)];
             std::uint32_t ids[max_k + 1];
             for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
@@ -109,7 +110,7 @@ public:
                 }
                 ++c.nodes, c.fields += k, c.pairs += k * k;
             }
-        });
+        }
         block_counts total{};
         for (block_counts& c : block_count_) {
             if (c.too_many < nodes) {  // the lowest such node, as a serial pass would stop at
@@ -130,7 +131,8 @@ public:
         }
         shared_.resize(total.nodes), shared_field_.resize(total.fields), shared_owner_.resize(total.fields);
         shared_normal_.resize(total.fields), shared_pair_normal_.resize(total.pairs);
-        gimlet::detail::parallel_for(blocks_n, threads, parallel, [&](std::ptrdiff_t b) {
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
+        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
             block_counts at = block_count_[std::size_t(b)];
             for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
                 if (shared_index_[node] < 0) continue;
@@ -152,7 +154,7 @@ public:
                                     : vector::Zero();
                 ++at.nodes, at.fields += k, at.pairs += k * k;
             }
-        });
+        }
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));
         slip_fraction_.assign(shared_pair_normal_.size(), real(0));

@@ -44,7 +44,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const int iterations = options_.consistent_mass_iterations;
     if (iterations <= 0) return;
     const std::size_t ne = grid_.entries();
-    const bool parallel_nodes = static_cast<std::ptrdiff_t>(ne) >= node_parallel_threshold;
+    [[maybe_unused]] const bool parallel_nodes = static_cast<std::ptrdiff_t>(ne) >= node_parallel_threshold;  // read by the OpenMP pragmas only
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
@@ -68,7 +68,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const std::size_t grid_nodes = grid_.size();
     const std::size_t blocks = (ne + cm_block - 1) / cm_block;
     cm_block_heavy_.resize(blocks);
-    detail::parallel_for(static_cast<std::ptrdiff_t>(blocks), threads(), parallel_nodes, [&](std::ptrdiff_t b) {
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
+    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
         bool heavy = false;
         const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
         // A block within a field slot the step does not sweep (swept_fields_) has no mass.
@@ -86,19 +87,20 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         // there: the product's pages elsewhere stay untouched).
         if (heavy)
             for (std::size_t e = first; e < last; ++e) cm_product_[e] = vector::Zero();
-    });
+    }
     cm_blocks_.clear();
     for (std::size_t b = 0; b < blocks; ++b)
         if (cm_block_heavy_[b]) cm_blocks_.push_back(static_cast<std::uint32_t>(b));
     // f(e) for every entry of the blocks above, split between the threads (each entry's work is
     // its own, so the results do not depend on how).
     const auto heavy_blocks = static_cast<std::ptrdiff_t>(cm_blocks_.size());
-    const bool parallel_heavy = heavy_blocks * std::ptrdiff_t(cm_block) >= node_parallel_threshold;
+    [[maybe_unused]] const bool parallel_heavy = heavy_blocks * std::ptrdiff_t(cm_block) >= node_parallel_threshold;
     auto for_each_heavy_block_entry = [&](auto&& f) {
-        detail::parallel_for(heavy_blocks, threads(), parallel_heavy, [&](std::ptrdiff_t k) {
+        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_heavy))
+        for (std::ptrdiff_t k = 0; k < heavy_blocks; ++k) {
             const std::size_t first = std::size_t(cm_blocks_[std::size_t(k)]) * cm_block;
             for (std::size_t e = first, last = std::min(ne, first + cm_block); e < last; ++e) f(e);
-        });
+        }
     };
     const auto& mass = particles_.template column<fields::mass>();
     // What the iterations share, found in the first: each particle's node entries in its

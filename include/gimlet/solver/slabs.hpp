@@ -6,7 +6,6 @@
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
-#include "gimlet/core/detail/shares.hpp"
 
 #include <algorithm>
 #include <array>
@@ -55,7 +54,7 @@ public:
     /// `threads` threads if `parallel`: each block of particles counts its slabs, takes its
     /// offsets within each slab in block order and places its particles, so the order is that
     /// of the serial sort whatever the thread count.
-    void bucket(bool parallel = false, int threads = 1) {
+    void bucket([[maybe_unused]] bool parallel = false, [[maybe_unused]] int threads = 1) {
         // A block per 4096 particles, at most 64 blocks (the offsets are a serial pass over
         // blocks x slabs); the order does not depend on the blocks.
         const std::size_t n = slab_of_.size(), slabs = std::size_t(slabs_);
@@ -102,32 +101,21 @@ public:
 private:
     // for_each over the slabs s with keep[s] != 0 (all where keep is null).
     template <class F>
-    void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F&& f) const {
-        auto slab = [&](std::size_t colour, std::ptrdiff_t j) {
-            const auto s = static_cast<std::size_t>(colour_slabs_[colour][static_cast<std::size_t>(j)]);
-            if (keep && !keep[s]) return;
-            for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
-        };
-        auto count = [&](std::size_t colour) { return static_cast<std::ptrdiff_t>(colour_slabs_[colour].size()); };
-        // Each thread the same slabs of a colour in every pass, so their particles and nodes
-        // stay near its core, and a thread done early takes over slabs of the others' shares
-        // (thread_shares). A colour's slabs are shared by count, not by the particles they
-        // hold (a split by particles measured no faster on 2 threads: docs/performance.md,
-        // "Each thread its own particles").
-        // One thread where not `parallel`: one share a colour, in order, through the same
-        // region, so that f's body is compiled once (shares.hpp, parallel_for).
-        std::array<thread_shares, 3> shares{thread_shares(count(0), threads, parallel),
-                                            thread_shares(count(1), threads, parallel),
-                                            thread_shares(count(2), threads, parallel)};
-        std::size_t last = 0;  // the last colour with slabs: no barrier after it but the region's
-        for (std::size_t c = 0; c < colour_slabs_.size(); ++c)
-            if (count(c) > 0) last = c;
+    void for_each_kept(const std::uint8_t* keep, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
         GIMLET_OMP(parallel num_threads(threads) if (parallel))
-        for (std::size_t c = 0; c <= last; ++c) {
-            if (count(c) == 0) continue;  // the same for every thread: no barrier for an empty colour
-            shares[c].for_each([&](std::ptrdiff_t j) { slab(c, j); });
-            if (c < last) {
-                GIMLET_OMP(barrier)
+        for (const auto& slabs : colour_slabs_) {
+            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
+            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
+            // Each thread the same slabs of the colour in every pass, so their particles and
+            // nodes stay near its core (solver.hpp, above parallel_threshold, says why). The
+            // slabs are split by count, not by the particles they hold (a split by particles
+            // measured no faster on 2 threads: docs/performance.md, "Each thread its own
+            // particles").
+            GIMLET_OMP(for schedule(static))
+            for (std::ptrdiff_t j = 0; j < count; ++j) {
+                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                if (keep && !keep[s]) continue;
+                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
             }
         }
     }

@@ -8,7 +8,6 @@
 /// the serial sort's (by bucket, then by index) whatever the blocks.
 
 #include "gimlet/core/detail/omp.hpp"
-#include "gimlet/core/detail/shares.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -26,14 +25,16 @@ namespace gimlet::detail {
 /// (equal sizes, the last ones shorter or empty), on `threads` threads if `parallel` and there
 /// are several blocks. f must not throw.
 template <class F>
-void for_each_block(std::size_t n, std::size_t blocks, bool parallel, int threads, F&& f) {
+void for_each_block(std::size_t n, std::size_t blocks, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads,
+                    F&& f) {
     if (blocks == 0) return;
     const std::size_t size = (n + blocks - 1) / blocks;
     const auto count = static_cast<std::ptrdiff_t>(blocks);
-    detail::parallel_for(count, threads, parallel && count > 1, [&](std::ptrdiff_t b) {
+    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && count > 1))
+    for (std::ptrdiff_t b = 0; b < count; ++b) {
         const std::size_t first = std::min(n, std::size_t(b) * size);
         f(std::size_t(b), first, std::min(n, first + size));
-    });
+    }
 }
 
 /// `cursor` holds blocks x buckets counts (block-major: cursor[b * buckets + k]); each becomes
