@@ -11,6 +11,7 @@
 #include "gimlet/contact/node.hpp"
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/grid.hpp"
 #include "gimlet/multi_field/correct.hpp"
@@ -95,22 +96,23 @@ public:
             return k;
         };
         const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-        (void)threads, (void)parallel;  // read only by the OpenMP pragmas
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
-        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
-            block_counts& c = block_count_[std::size_t(b)];
-            std::uint32_t ids[max_k + 1];
-            for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
-                const std::size_t k = fields_at(node, ids);
-                shared_index_[node] = k < 2 ? -1 : 0;
-                if (k < 2) continue;
-                if (k > max_k) {
-                    c.too_many = std::min(c.too_many, node);
-                    continue;
+        gimlet::detail::thread_shares count_shares(blocks_n, threads, parallel);
+        GIMLET_OMP(parallel num_threads(count_shares.team()))
+        for (auto claimed = count_shares.start(); count_shares.claim(claimed);)
+            for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+                block_counts& c = block_count_[std::size_t(b)];
+                std::uint32_t ids[max_k + 1];
+                for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
+                    const std::size_t k = fields_at(node, ids);
+                    shared_index_[node] = k < 2 ? -1 : 0;
+                    if (k < 2) continue;
+                    if (k > max_k) {
+                        c.too_many = std::min(c.too_many, node);
+                        continue;
+                    }
+                    ++c.nodes, c.fields += k, c.pairs += k * k;
                 }
-                ++c.nodes, c.fields += k, c.pairs += k * k;
             }
-        }
         block_counts total{};
         for (block_counts& c : block_count_) {
             if (c.too_many < nodes) {  // the lowest such node, as a serial pass would stop at
@@ -131,30 +133,32 @@ public:
         }
         shared_.resize(total.nodes), shared_field_.resize(total.fields), shared_owner_.resize(total.fields);
         shared_normal_.resize(total.fields), shared_pair_normal_.resize(total.pairs);
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel))
-        for (std::ptrdiff_t b = 0; b < blocks_n; ++b) {
-            block_counts at = block_count_[std::size_t(b)];
-            for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
-                if (shared_index_[node] < 0) continue;
-                const std::size_t first = at.fields;
-                const std::size_t k = fields_at(node, shared_field_.data() + first);
-                shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
-                shared_[at.nodes] = {node, first, k, at.pairs};
-                for (std::size_t j = 0; j < k; ++j) {
-                    shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
-                    const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
-                    const real len = g.norm();
-                    shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+        gimlet::detail::thread_shares fill_shares(blocks_n, threads, parallel);
+        GIMLET_OMP(parallel num_threads(fill_shares.team()))
+        for (auto claimed = fill_shares.start(); fill_shares.claim(claimed);)
+            for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+                block_counts at = block_count_[std::size_t(b)];
+                for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
+                    if (shared_index_[node] < 0) continue;
+                    const std::size_t first = at.fields;
+                    const std::size_t k = fields_at(node, shared_field_.data() + first);
+                    shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
+                    shared_[at.nodes] = {node, first, k, at.pairs};
+                    for (std::size_t j = 0; j < k; ++j) {
+                        shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
+                        const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
+                        const real len = g.norm();
+                        shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+                    }
+                    // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
+                    for (std::size_t a = 0; a < k; ++a)
+                        for (std::size_t b2 = 0; b2 < k; ++b2)
+                            shared_pair_normal_[at.pairs + a * k + b2] =
+                                a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2])
+                                        : vector::Zero();
+                    ++at.nodes, at.fields += k, at.pairs += k * k;
                 }
-                // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
-                for (std::size_t a = 0; a < k; ++a)
-                    for (std::size_t b2 = 0; b2 < k; ++b2)
-                        shared_pair_normal_[at.pairs + a * k + b2] =
-                            a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2])
-                                    : vector::Zero();
-                ++at.nodes, at.fields += k, at.pairs += k * k;
             }
-        }
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));
         slip_fraction_.assign(shared_pair_normal_.size(), real(0));

@@ -44,7 +44,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const int iterations = options_.consistent_mass_iterations;
     if (iterations <= 0) return;
     const std::size_t ne = grid_.entries();
-    [[maybe_unused]] const bool parallel_nodes = static_cast<std::ptrdiff_t>(ne) >= node_parallel_threshold;  // read by the OpenMP pragmas only
+    const bool parallel_nodes = static_cast<std::ptrdiff_t>(ne) >= node_parallel_threshold;
     cm_first_.resize(ne);
     cm_accel_.resize(ne);
     cm_product_.resize(ne);
@@ -68,39 +68,43 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     const std::size_t grid_nodes = grid_.size();
     const std::size_t blocks = (ne + cm_block - 1) / cm_block;
     cm_block_heavy_.resize(blocks);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
-        bool heavy = false;
-        const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
-        // A block within a field slot the step does not sweep (swept_fields_) has no mass.
-        const std::size_t field = first / grid_nodes;
-        const bool unswept = field == (last - 1) / grid_nodes && field % fields_per_body >= swept_fields_;
-        for (std::size_t e = first; e < last && !unswept; ++e) {
-            const real m = grid_.mass[e];
-            heavy = heavy || m > mass_cutoff_;
-            cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
-            cm_accel_[e] = cm_first_[e];
-            if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
+    detail::thread_shares shares(static_cast<std::ptrdiff_t>(blocks), threads(), parallel_nodes);
+    GIMLET_OMP(parallel num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+            bool heavy = false;
+            const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
+            // A block within a field slot the step does not sweep (swept_fields_) has no mass.
+            const std::size_t field = first / grid_nodes;
+            const bool unswept = field == (last - 1) / grid_nodes && field % fields_per_body >= swept_fields_;
+            for (std::size_t e = first; e < last && !unswept; ++e) {
+                const real m = grid_.mass[e];
+                heavy = heavy || m > mass_cutoff_;
+                cm_first_[e] = m > mass_cutoff_ ? vector(wall_free_[e].cwiseProduct(grid_.force[e] / m)) : vector::Zero();
+                cm_accel_[e] = cm_first_[e];
+                if constexpr (multi_field) cm_lumped_[e] = m > mass_cutoff_ && exchange_.shared(e % grid_nodes);
+            }
+            cm_block_heavy_[std::size_t(b)] = heavy;
+            // The first iteration's M a starts from zero in the blocks the iterations visit (only
+            // there: the product's pages elsewhere stay untouched).
+            if (heavy)
+                for (std::size_t e = first; e < last; ++e) cm_product_[e] = vector::Zero();
         }
-        cm_block_heavy_[std::size_t(b)] = heavy;
-        // The first iteration's M a starts from zero in the blocks the iterations visit (only
-        // there: the product's pages elsewhere stay untouched).
-        if (heavy)
-            for (std::size_t e = first; e < last; ++e) cm_product_[e] = vector::Zero();
-    }
     cm_blocks_.clear();
     for (std::size_t b = 0; b < blocks; ++b)
         if (cm_block_heavy_[b]) cm_blocks_.push_back(static_cast<std::uint32_t>(b));
     // f(e) for every entry of the blocks above, split between the threads (each entry's work is
     // its own, so the results do not depend on how).
     const auto heavy_blocks = static_cast<std::ptrdiff_t>(cm_blocks_.size());
-    [[maybe_unused]] const bool parallel_heavy = heavy_blocks * std::ptrdiff_t(cm_block) >= node_parallel_threshold;
+    const bool parallel_heavy = heavy_blocks * std::ptrdiff_t(cm_block) >= node_parallel_threshold;
     auto for_each_heavy_block_entry = [&](auto&& f) {
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_heavy))
-        for (std::ptrdiff_t k = 0; k < heavy_blocks; ++k) {
-            const std::size_t first = std::size_t(cm_blocks_[std::size_t(k)]) * cm_block;
-            for (std::size_t e = first, last = std::min(ne, first + cm_block); e < last; ++e) f(e);
-        }
+        detail::thread_shares shares(heavy_blocks, threads(), parallel_heavy);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const std::size_t first = std::size_t(cm_blocks_[std::size_t(k)]) * cm_block;
+                for (std::size_t e = first, last = std::min(ne, first + cm_block); e < last; ++e) f(e);
+            }
     };
     const auto& mass = particles_.template column<fields::mass>();
     // What the iterations share, found in the first: each particle's node entries in its

@@ -82,17 +82,19 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     light_particle_.assign(particles_.size(), lightness::none);
     const real theta = real(options_.light_particle_ratio);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-        const auto q = static_cast<std::size_t>(k);
-        real densest = 0;
-        auto at = entries(q);
-        stencils_[q].for_each([&](std::size_t node, real w, const vector&) {
-            const std::size_t e = at(node);
-            if (w > 0) densest = std::max(densest, node_reference_density_[e]);
-        });
-        light_particle_[q] = reference_density(q) < theta * densest ? lightness::light : lightness::none;
-    }
+    detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            const auto q = static_cast<std::size_t>(k);
+            real densest = 0;
+            auto at = entries(q);
+            stencils_[q].for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t e = at(node);
+                if (w > 0) densest = std::max(densest, node_reference_density_[e]);
+            });
+            light_particle_[q] = reference_density(q) < theta * densest ? lightness::light : lightness::none;
+        }
     for (std::size_t q = 0; q < particles_.size(); ++q)
         if (light_particle_[q] != lightness::none) light_list_.push_back(q);
     if (light_list_.empty()) return;

@@ -35,24 +35,26 @@ std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, co
     std::ptrdiff_t failed = n, first_bad = n;
     std::exception_ptr error;
     const std::ptrdiff_t groups = (n + material_group - 1) / material_group;
-    GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
-    for (std::ptrdiff_t g = 0; g < groups; ++g) {
-        const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
-        const bool paired = update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg);
-        for (std::ptrdiff_t k = first; k < last; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            if (update_materials && !paired) {
-                try {
-                    update_material_point(i, dt, vg);
-                } catch (...) {
-                    GIMLET_OMP(critical(gimlet_material_error))
-                    if (k < failed) failed = k, error = std::current_exception();
-                    continue;
+    detail::thread_shares shares(groups, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t g = claimed.first; g < claimed.last; ++g) {
+            const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
+            const bool paired = update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg);
+            for (std::ptrdiff_t k = first; k < last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                if (update_materials && !paired) {
+                    try {
+                        update_material_point(i, dt, vg);
+                    } catch (...) {
+                        GIMLET_OMP(critical(gimlet_material_error))
+                        if (k < failed) failed = k, error = std::current_exception();
+                        continue;
+                    }
                 }
+                if (!after(i)) first_bad = std::min(first_bad, k);
             }
-            if (!after(i)) first_bad = std::min(first_bad, k);
         }
-    }
     if (error) std::rethrow_exception(error);
     return first_bad;
 }

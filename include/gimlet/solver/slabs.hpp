@@ -6,6 +6,7 @@
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
 
 #include <algorithm>
 #include <array>
@@ -54,7 +55,7 @@ public:
     /// `threads` threads if `parallel`: each block of particles counts its slabs, takes its
     /// offsets within each slab in block order and places its particles, so the order is that
     /// of the serial sort whatever the thread count.
-    void bucket([[maybe_unused]] bool parallel = false, [[maybe_unused]] int threads = 1) {
+    void bucket(bool parallel = false, int threads = 1) {
         // A block per 4096 particles, at most 64 blocks (the offsets are a serial pass over
         // blocks x slabs); the order does not depend on the blocks.
         const std::size_t n = slab_of_.size(), slabs = std::size_t(slabs_);
@@ -99,23 +100,44 @@ public:
     }
 
 private:
+    // A schedule for each colour's slabs, and the last colour with slabs (no barrier after it
+    // but the region's). Built out of line: it is the same for every pass.
+    struct colour_shares {
+        GIMLET_NOINLINE colour_shares(const std::array<std::vector<int>, 3>& slabs, int threads, bool parallel)
+            : of{thread_shares(std::ptrdiff_t(slabs[0].size()), threads, parallel),
+                 thread_shares(std::ptrdiff_t(slabs[1].size()), threads, parallel),
+                 thread_shares(std::ptrdiff_t(slabs[2].size()), threads, parallel)} {
+            for (std::size_t c = 0; c < slabs.size(); ++c)
+                if (!slabs[c].empty()) last = c;
+        }
+        std::array<thread_shares, 3> of;
+        std::size_t last = 0;
+    };
+
     // for_each over the slabs s with keep[s] != 0 (all where keep is null).
     template <class F>
-    void for_each_kept(const std::uint8_t* keep, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads, F&& f) const {
-        GIMLET_OMP(parallel num_threads(threads) if (parallel))
-        for (const auto& slabs : colour_slabs_) {
-            const auto count = static_cast<std::ptrdiff_t>(slabs.size());
-            if (count == 0) continue;  // the same for every thread: no barrier for an empty colour
-            // Each thread the same slabs of the colour in every pass, so their particles and
-            // nodes stay near its core (solver.hpp, above parallel_threshold, says why). The
-            // slabs are split by count, not by the particles they hold (a split by particles
-            // measured no faster on 2 threads: docs/performance.md, "Each thread its own
-            // particles").
-            GIMLET_OMP(for schedule(static))
-            for (std::ptrdiff_t j = 0; j < count; ++j) {
-                const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
-                if (keep && !keep[s]) continue;
-                for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+    void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F&& f) const {
+        // Each thread the same slabs of a colour in every pass, so their particles and nodes
+        // stay near its core, and a thread done early takes over slabs of the others' shares
+        // (thread_shares; solver.hpp, above parallel_threshold, says why). A colour's slabs
+        // are shared by count, not by the particles they hold (a split by particles measured
+        // no faster on 2 threads: docs/performance.md, "Each thread its own particles").
+        colour_shares shares(colour_slabs_, threads, parallel);
+        GIMLET_OMP(parallel num_threads(shares.of[0].team()))
+        for (std::size_t c = 0; c <= shares.last; ++c) {
+            const auto& slabs = colour_slabs_[c];
+            if (slabs.empty()) continue;  // the same for every thread: no barrier for an empty colour
+            thread_shares& colour = shares.of[c];
+            for (auto claimed = colour.start(); colour.claim(claimed);)
+                for (std::ptrdiff_t j = claimed.first; j < claimed.last; ++j) {
+                    const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                    if (keep && !keep[s]) continue;
+                    for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+                }
+            // Slabs of one colour share no node; those of the next may share nodes with these,
+            // so no thread starts the next colour before every thread has ended this one.
+            if (c < shares.last) {
+                GIMLET_OMP(barrier)
             }
         }
     }

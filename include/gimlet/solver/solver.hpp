@@ -8,6 +8,7 @@
 #include "gimlet/contact/node.hpp"
 #include "gimlet/contact/single_field.hpp"
 #include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
 #include "gimlet/core/detail/stencil.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
@@ -188,20 +189,22 @@ public:
         // The guards met on the way (health_events), counted once the step is taken.
         std::uint64_t n0 = 0, n1 = 0, n2 = 0;
         std::ptrdiff_t f0 = n, f1 = n, f2 = n;
-        GIMLET_OMP(parallel for schedule(static) reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t i = 0; i < n; ++i) {
-            const auto p = particles_[static_cast<std::size_t>(i)];
-            unsigned guards = 0;
-            real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
-            if (guards != 0) {
-                if (guards & eos::guard::compression_capped) ++n0, f0 = std::min(f0, i);
-                if (guards & eos::guard::negative_modulus) ++n1, f1 = std::min(f1, i);
-                if (guards & eos::guard::no_wave_speed) ++n2, f2 = std::min(f2, i);
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) {
+                const auto p = particles_[static_cast<std::size_t>(i)];
+                unsigned guards = 0;
+                real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
+                if (guards != 0) {
+                    if (guards & eos::guard::compression_capped) ++n0, f0 = std::min(f0, i);
+                    if (guards & eos::guard::negative_modulus) ++n1, f1 = std::min(f1, i);
+                    if (guards & eos::guard::no_wave_speed) ++n2, f2 = std::min(f2, i);
+                }
+                if constexpr (M::viscosity_type::enabled)
+                    c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
+                fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
             }
-            if constexpr (M::viscosity_type::enabled)
-                c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
-            fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
-        }
         pending_health_ = {steps_, true, {n0, n1, n2}, {f0, f1, f2}};
         real dt = real(options_.max_time_step);
         if (fastest > 0) dt = std::min(dt, real(options_.cfl) * grid_.cell() / fastest);
@@ -250,19 +253,22 @@ public:
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
-    // Particle loops give each thread one fixed share (schedule(static)), and each slab pass
-    // gives each thread the same slabs of a colour. With GCC's and LLVM's OpenMP runtimes the
-    // same thread gets the same share in every loop over the same particles (the standard
-    // promises it only within one parallel region; the material pass's groups of two shift a
-    // boundary by at most a group), so a particle's data and a slab's nodes stay near one core,
-    // in its caches, from pass to pass (binding the threads, OMP_PROC_BIND and OMP_PLACES,
-    // keeps each thread on its core). Shares handed out on demand moved about half of them
-    // between the cores in every pass on 2 threads, and on a 2-core host where that cost as
-    // much as the work, 2 threads ran the elastic step no faster than 1 (docs/performance.md,
-    // "Each thread its own particles"). The price is on a busy machine: a thread that waits
-    // for its core holds up the others at the end of the loop. Every particle's result, and
-    // every node's sum (slab by slab, in particle order), is independent of which thread runs
-    // it, so the schedule costs no determinism.
+    // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
+    // thread a fixed share, the same in every loop over the same items, and a thread done early
+    // takes chunks of the shares not yet done; each slab pass likewise gives each thread the
+    // same slabs of a colour. (The same thread number is the same thread in every parallel
+    // region with GCC's and LLVM's runtimes; the OpenMP standard does not promise it.) So a
+    // particle's data and a slab's nodes stay near one core, in its caches, from pass to pass
+    // (binding the threads, OMP_PROC_BIND and OMP_PLACES, keeps each thread on its core):
+    // shares handed out on demand moved about half of them between the cores in every pass,
+    // and on a 2-core host where that cost as much as the work, 2 threads ran the elastic step
+    // no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
+    // machine) or a share of costlier particles holds up the loop by no more than the chunk its
+    // thread has claimed, where fixed shares alone waited for the whole share: on 16 cores
+    // those ran at 0.59-1.06 of the rate of shares handed out on demand (docs/performance.md,
+    // "Each thread its own particles" and "Shares that are taken over").
+    // Every particle's result, and every node's sum (slab by slab, in particle order), is
+    // independent of which thread runs it, so the schedule costs no determinism.
     //
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
@@ -485,8 +491,10 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         stencils_.resize(particles_.size());
         slabs_.resize(particles_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t i = 0; i < n; ++i) compute_stencil(static_cast<std::size_t>(i));
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) compute_stencil(static_cast<std::size_t>(i));
     }
 
     // The stencil of particle i, computed once and shared by every transfer of the step, and
@@ -590,8 +598,10 @@ private:
         template <class F>
         void operator()(std::size_t count, F&& f) const {
             const auto n = static_cast<std::ptrdiff_t>(count);
-            GIMLET_OMP(parallel for schedule(static) num_threads(self->threads()) if (n >= node_parallel_threshold))
-            for (std::ptrdiff_t k = 0; k < n; ++k) f(static_cast<std::size_t>(k));
+            detail::thread_shares shares(n, self->threads(), n >= node_parallel_threshold);
+            GIMLET_OMP(parallel num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) f(static_cast<std::size_t>(k));
         }
     };
     template <class Store>
@@ -622,19 +632,21 @@ private:
             return;
         }
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            const auto p = particles_[i];
-            std::size_t j = 0;
-            bool ok = true;
-            stencils_[i].for_each([&](std::size_t node, real, const vector&) {
-                const std::size_t side = partition_.side(std::as_const(p), node, grid_.node_position(node));
-                ok = ok && side < fields_per_body;
-                sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
-            });
-            if (!ok) first_bad = std::min(first_bad, k);
-        }
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const auto p = particles_[i];
+                std::size_t j = 0;
+                bool ok = true;
+                stencils_[i].for_each([&](std::size_t node, real, const vector&) {
+                    const std::size_t side = partition_.side(std::as_const(p), node, grid_.node_position(node));
+                    ok = ok && side < fields_per_body;
+                    sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
+                });
+                if (!ok) first_bad = std::min(first_bad, k);
+            }
         if (first_bad < n)
             fail(static_cast<std::size_t>(first_bad),
                  "the partition (multi_field::Partition::side) chose a field outside [0, " +
@@ -649,12 +661,14 @@ private:
     void contact_hook() {
         if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
             const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-            for (std::ptrdiff_t k = 0; k < n; ++k) {
-                const auto i = static_cast<std::size_t>(k);
-                const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
-                contact_.after_contact(particles_[i], info);
-            }
+            detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+            GIMLET_OMP(parallel num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                    const auto i = static_cast<std::size_t>(k);
+                    const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
+                    contact_.after_contact(particles_[i], info);
+                }
         }
     }
 
@@ -681,12 +695,14 @@ private:
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         auto& x = particles_.template column<fields::position>();
         std::ptrdiff_t first_bad = n;
-        GIMLET_OMP(parallel for schedule(static) reduction(min : first_bad) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            grid_.wrap(x[i]);
-            if (!problem(i).empty()) first_bad = std::min(first_bad, k);
-        }
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                grid_.wrap(x[i]);
+                if (!problem(i).empty()) first_bad = std::min(first_bad, k);
+            }
         if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
     }
 

@@ -110,21 +110,25 @@ void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
     const std::size_t nodes = grid_.size(), swept = swept_fields_;
     if (swept == fields_per_body) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= node_parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) f(static_cast<std::size_t>(k));
+        detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) f(static_cast<std::size_t>(k));
         return;
     }
     constexpr std::size_t run = 1024;
     const std::size_t runs_per_slot = (nodes + run - 1) / run, slots = materials_.size() * swept;
     const auto runs = static_cast<std::ptrdiff_t>(slots * runs_per_slot);
-    [[maybe_unused]] const bool parallel = static_cast<std::ptrdiff_t>(slots * nodes) >= node_parallel_threshold;
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel))
-    for (std::ptrdiff_t k = 0; k < runs; ++k) {
-        const std::size_t slot = std::size_t(k) / runs_per_slot, r = std::size_t(k) % runs_per_slot;
-        const std::size_t block = (slot / swept) * fields_per_body + slot % swept;  // body * fields_per_body + field
-        const std::size_t first = block * nodes + r * run, last = block * nodes + std::min(nodes, (r + 1) * run);
-        for (std::size_t e = first; e < last; ++e) f(e);
-    }
+    const bool parallel = static_cast<std::ptrdiff_t>(slots * nodes) >= node_parallel_threshold;
+    detail::thread_shares shares(runs, threads(), parallel);
+    GIMLET_OMP(parallel num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            const std::size_t slot = std::size_t(k) / runs_per_slot, r = std::size_t(k) % runs_per_slot;
+            const std::size_t block = (slot / swept) * fields_per_body + slot % swept;  // body * fields_per_body + field
+            const std::size_t first = block * nodes + r * run, last = block * nodes + std::min(nodes, (r + 1) * run);
+            for (std::size_t e = first; e < last; ++e) f(e);
+        }
 }
 
 // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), the forces of the consistent
@@ -290,8 +294,10 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, boo
         for_each_particle_by_slab(update);
     } else {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) update(static_cast<std::size_t>(k));
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) update(static_cast<std::size_t>(k));
     }
 }
 

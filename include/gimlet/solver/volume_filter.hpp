@@ -58,7 +58,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         // One block of node entries per body: key(i, e) is particle i's body's copy of entry e.
         const std::size_t ne = grid_.entries(), nk = ne * materials_.size();
         const auto keys = static_cast<std::ptrdiff_t>(nk);
-        [[maybe_unused]] const bool parallel_nodes = keys >= node_parallel_threshold;  // read by the OpenMP pragmas only
+        const bool parallel_nodes = keys >= node_parallel_threshold;
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         const auto& mass = particles_.template column<fields::mass>();
         auto& F = particles_.template column<fields::deformation_gradient>();
@@ -74,16 +74,18 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
 
         // Each particle's weight on the nodes above the mass cut-off (the weights below are
         // renormalised by it, so that a particle's weights over those nodes sum to one).
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            auto at = entries(i);
-            real w_heavy = 0;
-            stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                if (grid_.mass[at(node)] > mass_cutoff_) w_heavy += w;
-            });
-            vf_heavy_[i] = w_heavy;
-        }
+        detail::thread_shares heavy_shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(heavy_shares.team()))
+        for (auto claimed = heavy_shares.start(); heavy_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                auto at = entries(i);
+                real w_heavy = 0;
+                stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                    if (grid_.mass[at(node)] > mass_cutoff_) w_heavy += w;
+                });
+                vf_heavy_[i] = w_heavy;
+            }
         // out_k = sum_p (S_ip / heavy_p) value(p) over the nodes above the cut-off, slab by slab.
         auto scatter = [&](std::vector<real>& out, auto&& value) {
             std::fill(out.begin(), out.end(), real(0));
@@ -101,44 +103,50 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         // vf_particle_[p] = sum_i (S_ip / heavy_p) c_i over the nodes above the cut-off (own(p)
         // for a particle that reaches none).
         auto gather = [&](const std::vector<real>& c, auto&& own) {
-            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-            for (std::ptrdiff_t k = 0; k < n; ++k) {
-                const auto i = static_cast<std::size_t>(k);
-                if (!(heavy[i] > 0)) {
-                    vf_particle_[i] = own(i);
-                    continue;
+            detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+            GIMLET_OMP(parallel num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                    const auto i = static_cast<std::size_t>(k);
+                    if (!(heavy[i] > 0)) {
+                        vf_particle_[i] = own(i);
+                        continue;
+                    }
+                    const std::size_t base = std::size_t(body[i]) * ne;
+                    auto at = entries(i);
+                    real sum = 0;
+                    stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                        const std::size_t j = at(node);
+                        if (grid_.mass[j] > mass_cutoff_) sum += w * c[base + j];
+                    });
+                    vf_particle_[i] = sum / heavy[i];
                 }
-                const std::size_t base = std::size_t(body[i]) * ne;
-                auto at = entries(i);
-                real sum = 0;
-                stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                    const std::size_t j = at(node);
-                    if (grid_.mass[j] > mass_cutoff_) sum += w * c[base + j];
-                });
-                vf_particle_[i] = sum / heavy[i];
-            }
         };
 
         // The masses as the renormalised weights see them, and c0: the mass-weighted mean J of
         // the particles reaching each node.
         scatter(vf_mass_, [&](std::size_t i) { return mass[i]; });
         scatter(vf_first_, [&](std::size_t i) { return mass[i] * F[i].determinant(); });
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-        for (std::ptrdiff_t k = 0; k < keys; ++k) {
-            const auto j = static_cast<std::size_t>(k);
-            vf_first_[j] = vf_mass_[j] > 0 ? vf_first_[j] / vf_mass_[j] : real(0);
-            vf_value_[j] = vf_first_[j];
-        }
+        detail::thread_shares first_shares(keys, threads(), parallel_nodes);
+        GIMLET_OMP(parallel num_threads(first_shares.team()))
+        for (auto claimed = first_shares.start(); first_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto j = static_cast<std::size_t>(k);
+                vf_first_[j] = vf_mass_[j] > 0 ? vf_first_[j] / vf_mass_[j] : real(0);
+                vf_value_[j] = vf_first_[j];
+            }
         // c^(j+1) = c0 + c^(j) - (M c^(j)) / m, M c a gather to the particles and a scatter of
         // m_p (S c)_p back (consistent_mass.hpp); a uniform J is its fixed point.
         for (int it = 0; it < iterations; ++it) {
             gather(vf_value_, [&](std::size_t) { return real(0); });
             scatter(vf_product_, [&](std::size_t i) { return mass[i] * vf_particle_[i]; });
-            GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-            for (std::ptrdiff_t k = 0; k < keys; ++k) {
-                const auto j = static_cast<std::size_t>(k);
-                if (vf_mass_[j] > 0) vf_value_[j] = vf_first_[j] + vf_value_[j] - vf_product_[j] / vf_mass_[j];
-            }
+            detail::thread_shares shares(keys, threads(), parallel_nodes);
+            GIMLET_OMP(parallel num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                    const auto j = static_cast<std::size_t>(k);
+                    if (vf_mass_[j] > 0) vf_value_[j] = vf_first_[j] + vf_value_[j] - vf_product_[j] / vf_mass_[j];
+                }
         }
         // The new J (a particle that reaches no node above the cut-off keeps its own), and each
         // particle's e_s there and at its J, checked before anything changes: the first particle
@@ -149,21 +157,23 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         es_change.assign(particles_.size(), 0.0);
         std::ptrdiff_t failed = n;
         std::exception_ptr error;
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            const real j_old = F[i].determinant(), j_new = vf_particle_[i];
-            if (j_new == j_old) continue;
-            try {
-                if (!(std::isfinite(j_new) && j_new > 0))
-                    throw std::domain_error("not a positive number");
-                const auto& thermal = materials_[body[i]].thermal;
-                es_change[i] = thermal.reference_energy(double(j_new)) - thermal.reference_energy(double(j_old));
-            } catch (...) {
-                GIMLET_OMP(critical(gimlet_volume_filter_error))
-                if (k < failed) failed = k, error = std::current_exception();
+        detail::thread_shares check_shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(check_shares.team()))
+        for (auto claimed = check_shares.start(); check_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const real j_old = F[i].determinant(), j_new = vf_particle_[i];
+                if (j_new == j_old) continue;
+                try {
+                    if (!(std::isfinite(j_new) && j_new > 0))
+                        throw std::domain_error("not a positive number");
+                    const auto& thermal = materials_[body[i]].thermal;
+                    es_change[i] = thermal.reference_energy(double(j_new)) - thermal.reference_energy(double(j_old));
+                } catch (...) {
+                    GIMLET_OMP(critical(gimlet_volume_filter_error))
+                    if (k < failed) failed = k, error = std::current_exception();
+                }
             }
-        }
         if (error) {
             const auto i = static_cast<std::size_t>(failed);
             std::string why;
@@ -178,14 +188,16 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
                         detail::to_text(double(vf_particle_[i])) + ", which the reference isentrope refuses (" + why + ")");
         }
         // Apply: F scaled to J_new, e moved along the isentrope.
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            if (es_change[i] == 0.0) continue;
-            const real j_old = F[i].determinant(), j_new = vf_particle_[i];
-            F[i] *= std::pow(j_new / j_old, real(1) / real(dim));
-            e[i] += real(es_change[i]);
-        }
+        detail::thread_shares apply_shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(apply_shares.team()))
+        for (auto claimed = apply_shares.start(); apply_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                if (es_change[i] == 0.0) continue;
+                const real j_old = F[i].determinant(), j_new = vf_particle_[i];
+                F[i] *= std::pow(j_new / j_old, real(1) / real(dim));
+                e[i] += real(es_change[i]);
+            }
         // The heat: each particle's release m_p (e_s(J) - e_s(J_new)) through the nodes; the node
         // sums of the total's sign, scaled to the total, back to the particles per unit mass
         // (sum_p m_p heat_p = total exactly).
@@ -198,14 +210,18 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
             if (counted(vf_product_[j])) same_sign += vf_product_[j];
         if (total == 0 || same_sign == 0) return;
         const real scale = total / same_sign;
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (parallel_nodes))
-        for (std::ptrdiff_t k = 0; k < keys; ++k) {
-            const auto j = static_cast<std::size_t>(k);
-            vf_value_[j] = vf_mass_[j] > 0 && counted(vf_product_[j]) ? vf_product_[j] * scale / vf_mass_[j] : real(0);
-        }
+        detail::thread_shares heat_shares(keys, threads(), parallel_nodes);
+        GIMLET_OMP(parallel num_threads(heat_shares.team()))
+        for (auto claimed = heat_shares.start(); heat_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                const auto j = static_cast<std::size_t>(k);
+                vf_value_[j] = vf_mass_[j] > 0 && counted(vf_product_[j]) ? vf_product_[j] * scale / vf_mass_[j] : real(0);
+            }
         gather(vf_value_, [&](std::size_t) { return real(0); });
-        GIMLET_OMP(parallel for schedule(static) num_threads(threads()) if (n >= parallel_threshold))
-        for (std::ptrdiff_t k = 0; k < n; ++k) e[static_cast<std::size_t>(k)] += vf_particle_[static_cast<std::size_t>(k)];
+        detail::thread_shares add_shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel num_threads(add_shares.team()))
+        for (auto claimed = add_shares.start(); add_shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) e[static_cast<std::size_t>(k)] += vf_particle_[static_cast<std::size_t>(k)];
     }
 }
 

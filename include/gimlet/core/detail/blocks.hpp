@@ -8,6 +8,7 @@
 /// the serial sort's (by bucket, then by index) whatever the blocks.
 
 #include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -25,16 +26,17 @@ namespace gimlet::detail {
 /// (equal sizes, the last ones shorter or empty), on `threads` threads if `parallel` and there
 /// are several blocks. f must not throw.
 template <class F>
-void for_each_block(std::size_t n, std::size_t blocks, [[maybe_unused]] bool parallel, [[maybe_unused]] int threads,
-                    F&& f) {
+void for_each_block(std::size_t n, std::size_t blocks, bool parallel, int threads, F&& f) {
     if (blocks == 0) return;
     const std::size_t size = (n + blocks - 1) / blocks;
     const auto count = static_cast<std::ptrdiff_t>(blocks);
-    GIMLET_OMP(parallel for schedule(static) num_threads(threads) if (parallel && count > 1))
-    for (std::ptrdiff_t b = 0; b < count; ++b) {
-        const std::size_t first = std::min(n, std::size_t(b) * size);
-        f(std::size_t(b), first, std::min(n, first + size));
-    }
+    thread_shares shares(count, threads, parallel && count > 1);
+    GIMLET_OMP(parallel num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+            const std::size_t first = std::min(n, std::size_t(b) * size);
+            f(std::size_t(b), first, std::min(n, first + size));
+        }
 }
 
 /// `cursor` holds blocks x buckets counts (block-major: cursor[b * buckets + k]); each becomes

@@ -9,11 +9,16 @@
 ///
 /// GIMLET_COLD: the opposite, for what only an error reaches (building a message, throwing):
 /// kept out of line, so that the hot function that calls it stays small.
+///
+/// GIMLET_NOINLINE: kept out of line without being cold: code that many loops share and call
+/// rarely (once a chunk of items), where a copy in each would only cost compile time.
 
 #if defined(__GNUC__) || defined(__clang__)
 #define GIMLET_INLINE [[gnu::always_inline]] inline
 #define GIMLET_COLD [[gnu::cold, gnu::noinline]]
+#define GIMLET_NOINLINE [[gnu::noinline]]
 #else
 #define GIMLET_INLINE inline
 #define GIMLET_COLD
+#define GIMLET_NOINLINE
 #endif
