@@ -23,7 +23,7 @@ std::vector<int> runs(std::ptrdiff_t n, int shares, [[maybe_unused]] int team) {
     gimlet::detail::thread_shares s(n, shares);
     GIMLET_OMP(parallel num_threads(team))
     for (auto claimed = s.start(); s.claim(claimed);)
-        for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i)
+        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i)
             count[static_cast<std::size_t>(i)].fetch_add(1, std::memory_order_relaxed);
     std::vector<int> out;
     for (auto& c : count) out.push_back(c.load());
@@ -34,7 +34,7 @@ std::vector<int> runs(std::ptrdiff_t n, int shares, [[maybe_unused]] int team) {
 
 TEST_CASE("thread_shares runs every item once, on teams of any size", "[parallel][shares]") {
     for (std::ptrdiff_t n : {0, 1, 5, 17, 1000, 100003})
-        for (int shares : {1, 2, 3, 8})
+        for (int shares : {1, 2, 3, 8, 65})  // 65: more than the shares an object holds (64)
             for (int team : {1, 2, 3}) {  // a team of 8 made LLVM 14's libomp leak (LeakSanitizer)
                 CAPTURE(n, shares, team);
                 const std::vector<int> count = runs(n, shares, team);
@@ -45,13 +45,15 @@ TEST_CASE("thread_shares runs every item once, on teams of any size", "[parallel
 }
 
 TEST_CASE("thread_shares: not parallel, one thread runs every item in order", "[parallel][shares]") {
-    // `parallel` false: one share whatever the thread count, so the region's one thread takes
-    // the items from the front, in order (the solver's loops below their thresholds).
+    // `parallel` false: a team of one and one share whatever the thread count, so the region's
+    // one thread takes the items from the front, in order (the solver's loops below their
+    // thresholds).
     gimlet::detail::thread_shares s(3000, 4, false);
+    REQUIRE(s.team() == 1);
     std::vector<std::ptrdiff_t> order;
-    GIMLET_OMP(parallel num_threads(4) if (false))
+    GIMLET_OMP(parallel num_threads(s.team()))
     for (auto claimed = s.start(); s.claim(claimed);)
-        for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) order.push_back(i);
+        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) order.push_back(i);
     std::vector<std::ptrdiff_t> expected(3000);
     std::iota(expected.begin(), expected.end(), std::ptrdiff_t(0));
     REQUIRE(order == expected);
@@ -78,7 +80,7 @@ TEST_CASE("thread_shares: a thread that does not come has its share taken over",
             while (done.load() < n && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
         }
         for (auto claimed = s.start(); s.claim(claimed);)
-            for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) {
+            for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) {
                 by[static_cast<std::size_t>(i)] = me;
                 done.fetch_add(1);
             }

@@ -266,9 +266,10 @@ template <class Solver>
     GIMLET_OMP(parallel num_threads(threads) if (blocks > 1))
     {
         best_disc local;
-        // Centres on demand, not in the solver's fixed shares (detail::thread_shares): a
-        // centre's cost varies a hundredfold (most are skipped, a hot one sums its disc), so
-        // fixed shares would be uneven; the hottest disc is the same whoever tries it.
+        // Centres on demand in small chunks, not in the solver's shares (detail::thread_shares):
+        // a centre's cost varies a hundredfold (most are skipped, a hot one sums its disc), and
+        // the centres are visited once a call, so there is no data to keep near a core; the
+        // hottest disc is the same whoever tries it.
         GIMLET_OMP(for schedule(dynamic, 256) nowait)
         for (std::ptrdiff_t k = 0; k < count_n; ++k) {
             const auto i = static_cast<std::size_t>(k);

@@ -99,7 +99,7 @@ public:
         gimlet::detail::thread_shares count_shares(blocks_n, threads, parallel);
         GIMLET_OMP(parallel num_threads(count_shares.team()))
         for (auto claimed = count_shares.start(); count_shares.claim(claimed);)
-            for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
                 block_counts& c = block_count_[std::size_t(b)];
                 std::uint32_t ids[max_k + 1];
                 for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
@@ -136,7 +136,7 @@ public:
         gimlet::detail::thread_shares fill_shares(blocks_n, threads, parallel);
         GIMLET_OMP(parallel num_threads(fill_shares.team()))
         for (auto claimed = fill_shares.start(); fill_shares.claim(claimed);)
-            for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
                 block_counts at = block_count_[std::size_t(b)];
                 for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
                     if (shared_index_[node] < 0) continue;

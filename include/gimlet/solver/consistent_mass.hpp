@@ -71,7 +71,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
     detail::thread_shares shares(static_cast<std::ptrdiff_t>(blocks), threads(), parallel_nodes);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+        for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
             bool heavy = false;
             const std::size_t first = std::size_t(b) * cm_block, last = std::min(ne, first + cm_block);
             // A block within a field slot the step does not sweep (swept_fields_) has no mass.
@@ -101,7 +101,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
         detail::thread_shares shares(heavy_blocks, threads(), parallel_heavy);
         GIMLET_OMP(parallel num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const std::size_t first = std::size_t(cm_blocks_[std::size_t(k)]) * cm_block;
                 for (std::size_t e = first, last = std::min(ne, first + cm_block); e < last; ++e) f(e);
             }

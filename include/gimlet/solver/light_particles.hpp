@@ -85,7 +85,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
     detail::thread_shares shares(n, threads(), n >= parallel_threshold);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
             const auto q = static_cast<std::size_t>(k);
             real densest = 0;
             auto at = entries(q);

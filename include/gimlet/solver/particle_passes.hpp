@@ -38,7 +38,7 @@ std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, co
     detail::thread_shares shares(groups, threads(), n >= parallel_threshold);
     GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t g = claimed.first; g < claimed.last; ++g) {
+        for (std::ptrdiff_t g = claimed.first, end = claimed.last; g < end; ++g) {
             const std::ptrdiff_t first = g * material_group, last = std::min(n, first + material_group);
             const bool paired = update_materials && last - first == 2 && update_material_pair(static_cast<std::size_t>(first), dt, vg);
             for (std::ptrdiff_t k = first; k < last; ++k) {

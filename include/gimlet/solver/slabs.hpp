@@ -129,7 +129,7 @@ private:
             if (slabs.empty()) continue;  // the same for every thread: no barrier for an empty colour
             thread_shares& colour = shares.of[c];
             for (auto claimed = colour.start(); colour.claim(claimed);)
-                for (std::ptrdiff_t j = claimed.first; j < claimed.last; ++j) {
+                for (std::ptrdiff_t j = claimed.first, end = claimed.last; j < end; ++j) {
                     const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
                     if (keep && !keep[s]) continue;
                     for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);

@@ -192,7 +192,7 @@ public:
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) {
+            for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) {
                 const auto p = particles_[static_cast<std::size_t>(i)];
                 unsigned guards = 0;
                 real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
@@ -494,7 +494,7 @@ private:
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t i = claimed.first; i < claimed.last; ++i) compute_stencil(static_cast<std::size_t>(i));
+            for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) compute_stencil(static_cast<std::size_t>(i));
     }
 
     // The stencil of particle i, computed once and shared by every transfer of the step, and
@@ -601,7 +601,7 @@ private:
             detail::thread_shares shares(n, self->threads(), n >= node_parallel_threshold);
             GIMLET_OMP(parallel num_threads(shares.team()))
             for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) f(static_cast<std::size_t>(k));
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
         }
     };
     template <class Store>
@@ -635,7 +635,7 @@ private:
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const auto p = particles_[i];
                 std::size_t j = 0;
@@ -664,7 +664,7 @@ private:
             detail::thread_shares shares(n, threads(), n >= parallel_threshold);
             GIMLET_OMP(parallel num_threads(shares.team()))
             for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                     const auto i = static_cast<std::size_t>(k);
                     const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
                     contact_.after_contact(particles_[i], info);
@@ -698,7 +698,7 @@ private:
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 grid_.wrap(x[i]);
                 if (!problem(i).empty()) first_bad = std::min(first_bad, k);

@@ -113,7 +113,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
         detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);
         GIMLET_OMP(parallel num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) f(static_cast<std::size_t>(k));
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
         return;
     }
     constexpr std::size_t run = 1024;
@@ -123,7 +123,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
     detail::thread_shares shares(runs, threads(), parallel);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
             const std::size_t slot = std::size_t(k) / runs_per_slot, r = std::size_t(k) % runs_per_slot;
             const std::size_t block = (slot / swept) * fields_per_body + slot % swept;  // body * fields_per_body + field
             const std::size_t first = block * nodes + r * run, last = block * nodes + std::min(nodes, (r + 1) * run);
@@ -297,7 +297,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, boo
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(shares.team()))
         for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) update(static_cast<std::size_t>(k));
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) update(static_cast<std::size_t>(k));
     }
 }
 

@@ -77,7 +77,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares heavy_shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(heavy_shares.team()))
         for (auto claimed = heavy_shares.start(); heavy_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 auto at = entries(i);
                 real w_heavy = 0;
@@ -106,7 +106,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
             detail::thread_shares shares(n, threads(), n >= parallel_threshold);
             GIMLET_OMP(parallel num_threads(shares.team()))
             for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                     const auto i = static_cast<std::size_t>(k);
                     if (!(heavy[i] > 0)) {
                         vf_particle_[i] = own(i);
@@ -130,7 +130,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares first_shares(keys, threads(), parallel_nodes);
         GIMLET_OMP(parallel num_threads(first_shares.team()))
         for (auto claimed = first_shares.start(); first_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto j = static_cast<std::size_t>(k);
                 vf_first_[j] = vf_mass_[j] > 0 ? vf_first_[j] / vf_mass_[j] : real(0);
                 vf_value_[j] = vf_first_[j];
@@ -143,7 +143,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
             detail::thread_shares shares(keys, threads(), parallel_nodes);
             GIMLET_OMP(parallel num_threads(shares.team()))
             for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                     const auto j = static_cast<std::size_t>(k);
                     if (vf_mass_[j] > 0) vf_value_[j] = vf_first_[j] + vf_value_[j] - vf_product_[j] / vf_mass_[j];
                 }
@@ -160,7 +160,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares check_shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(check_shares.team()))
         for (auto claimed = check_shares.start(); check_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const real j_old = F[i].determinant(), j_new = vf_particle_[i];
                 if (j_new == j_old) continue;
@@ -191,7 +191,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares apply_shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(apply_shares.team()))
         for (auto claimed = apply_shares.start(); apply_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 if (es_change[i] == 0.0) continue;
                 const real j_old = F[i].determinant(), j_new = vf_particle_[i];
@@ -213,7 +213,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares heat_shares(keys, threads(), parallel_nodes);
         GIMLET_OMP(parallel num_threads(heat_shares.team()))
         for (auto claimed = heat_shares.start(); heat_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) {
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
                 const auto j = static_cast<std::size_t>(k);
                 vf_value_[j] = vf_mass_[j] > 0 && counted(vf_product_[j]) ? vf_product_[j] * scale / vf_mass_[j] : real(0);
             }
@@ -221,7 +221,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
         detail::thread_shares add_shares(n, threads(), n >= parallel_threshold);
         GIMLET_OMP(parallel num_threads(add_shares.team()))
         for (auto claimed = add_shares.start(); add_shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first; k < claimed.last; ++k) e[static_cast<std::size_t>(k)] += vf_particle_[static_cast<std::size_t>(k)];
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) e[static_cast<std::size_t>(k)] += vf_particle_[static_cast<std::size_t>(k)];
     }
 }
 

@@ -33,7 +33,7 @@ void for_each_block(std::size_t n, std::size_t blocks, bool parallel, int thread
     thread_shares shares(count, threads, parallel && count > 1);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t b = claimed.first; b < claimed.last; ++b) {
+        for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
             const std::size_t first = std::min(n, std::size_t(b) * size);
             f(std::size_t(b), first, std::min(n, first + size));
         }

@@ -8,7 +8,8 @@
 /// and nodes near its core from loop to loop; taking over the rest keeps a slow core (another
 /// job on it, a virtual machine's neighbour, a small core of a hybrid processor) or a share of
 /// costlier items from holding up the loop by more than the chunk its thread has claimed.
-/// docs/performance.md, "Shares that are taken over", has the measurements behind it.
+/// docs/performance.md, "Shares that are taken over" and "Shares taken over, the loop written
+/// at each site", has the measurements behind it.
 ///
 /// It departs from the paper: the owner claims a shrinking part of what is left (guided
 /// self-scheduling, below) rather than a fixed 1/threads of it, and a thread done early goes
@@ -36,8 +37,8 @@ namespace gimlet::detail {
 ///
 ///     detail::thread_shares shares(n, threads, parallel);
 ///     GIMLET_OMP(parallel num_threads(shares.team()))
-///     for (auto c = shares.start(); shares.claim(c);)
-///         for (std::ptrdiff_t i = c.first; i < c.last; ++i) { ... }
+///     for (auto claimed = shares.start(); shares.claim(claimed);)
+///         for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) { ... }
 ///
 /// The calling thread gets its own share's chunks first, in order, then chunks of the shares
 /// after its own (wrapping round) that are not done. Over the team, every i in [0, n) exactly
@@ -45,7 +46,9 @@ namespace gimlet::detail {
 /// loop is written out at each site rather than taken as a lambda: a template driver per loop
 /// cost the solver's test units about a tenth more compile time (docs/performance.md, "Shares
 /// that are taken over"). Where `parallel` is false the region has one thread, which takes
-/// the one share from the front, in order.
+/// the one share from the front, in order. An object runs one loop: a second loop over it
+/// finds every share done and runs nothing. The chunk's end is copied into the loop (`end`):
+/// `claim` sees the chunk, so the compiler would otherwise reload its end on every item.
 class thread_shares {
 public:
     /// At most this many shares: a larger team shares them (two threads claim from one share's
@@ -81,8 +84,8 @@ public:
     [[nodiscard]] chunk start() const noexcept { return {thread_number() % count_, 0, 0, 0}; }
 
     /// The calling thread's next chunk, in c.first and c.last; false when every share is done.
-    /// Not inlined: it is the same for every loop, called once a chunk, and a copy in each
-    /// loop's body made the solver's units a quarter slower to compile.
+    /// Not inlined: it is the same for every loop and called once a chunk, so a copy in each
+    /// loop's body would only add compile time.
     GIMLET_NOINLINE bool claim(chunk& c) noexcept {
         for (; c.k < count_; ++c.k) {
             slot& s = slots_[std::size_t((c.own + c.k) % count_)];
