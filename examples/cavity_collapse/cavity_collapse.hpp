@@ -225,25 +225,32 @@ public:
         r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
         r.internal = gimlet::diagnostics::internal_energy(sol);
         if (s_.radius > 0) {
+            // Each cavity's axial chord, then the lateral chords of the open ones: two passes
+            // over the particles, each gathering all its lines' strips (void_chords).
+            const auto axial = gimlet::diagnostics::void_chords(
+                sol, {{0, 1, S::vector(0.5 * width, centre_y_[0])}, {1, 1, S::vector(0.5 * width, centre_y_[1])}}, strip,
+                spacing);
+            std::vector<gimlet::diagnostics::chord_line<S::vector>> across;
             for (std::uint32_t b = 0; b < 2; ++b) {
                 auto& c = r.cavity[b];
-                const S::vector on_axis(0.5 * width, centre_y_[b]);
-                const auto axial = gimlet::diagnostics::void_chord(sol, b, 1, on_axis, strip, spacing);
-                c.open = axial.open;
-                c.centre_y = axial.open ? axial.centre() : centre_y_[b];
+                c.open = axial[b].open;
+                c.centre_y = axial[b].open ? axial[b].centre() : centre_y_[b];
                 centre_y_[b] = c.centre_y;
-                if (!axial.open) continue;
-                c.axial_chord = axial.length();
-                c.closing_speed = axial.closing_speed();
+                if (!axial[b].open) continue;
+                c.axial_chord = axial[b].length();
+                c.closing_speed = axial[b].closing_speed();
                 // The lower block is hit from above: its cavity's upstream wall is the upper one.
-                c.upstream_speed = b == 0 ? -axial.upper_wall_velocity : axial.lower_wall_velocity;
-                // The widest of five horizontal chords spread along the axial one: a jet leaves a
-                // crescent that is wide near the far wall but narrow at the chord's middle.
-                for (int k = 1; k <= 5; ++k) {
-                    const S::vector across(0.5 * width, axial.lower_wall + k / 6.0 * c.axial_chord);
-                    const auto lateral = gimlet::diagnostics::void_chord(sol, b, 0, across, strip, spacing);
-                    c.lateral_chord = std::max(c.lateral_chord, lateral.length());
-                }
+                c.upstream_speed = b == 0 ? -axial[b].upper_wall_velocity : axial[b].lower_wall_velocity;
+                // Five horizontal chords spread along the axial one: a jet leaves a crescent
+                // that is wide near the far wall but narrow at the chord's middle.
+                for (int k = 1; k <= 5; ++k)
+                    across.push_back({b, 0, S::vector(0.5 * width, axial[b].lower_wall + k / 6.0 * c.axial_chord)});
+            }
+            // The widest of each open cavity's five.
+            const auto lateral = gimlet::diagnostics::void_chords(sol, across, strip, spacing);
+            for (std::size_t j = 0; j < lateral.size(); ++j) {
+                auto& c = r.cavity[across[j].body];
+                c.lateral_chord = std::max(c.lateral_chord, lateral[j].length());
             }
         }
         return r;

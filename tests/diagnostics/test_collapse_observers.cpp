@@ -444,6 +444,27 @@ TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and 
             CHECK(mine.upper_wall_velocity == one.upper_wall_velocity);
         }
     }
+    // void_chords, the lines' strips gathered in one pass: each line's chord is void_chord's
+    // alone on one thread, bit for bit, on every thread count (an open cavity's two chords and
+    // a closed line through the other body, so a strip mixed up between lines would show).
+    const std::vector<gimlet::diagnostics::chord_line<S::vector>> lines{
+        {0, 1, S::vector(10e-3, 8e-3)}, {1, 1, S::vector(10e-3, 24e-3)}, {0, 0, S::vector(10e-3, 8e-3)}};
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        INFO("threads " << k + 1);
+        const auto all = gimlet::diagnostics::void_chords(runs[k], lines, strip, 0.25 * h);
+        REQUIRE(all.size() == lines.size());
+        for (std::size_t j = 0; j < lines.size(); ++j) {
+            INFO("line " << j);
+            const auto one = gimlet::diagnostics::void_chord(runs[0], lines[j].body, lines[j].axis, lines[j].point, strip, 0.25 * h);
+            CHECK(all[j].open == one.open);
+            CHECK(all[j].lower_wall == one.lower_wall);
+            CHECK(all[j].upper_wall == one.upper_wall);
+            CHECK(all[j].lower_wall_velocity == one.lower_wall_velocity);
+            CHECK(all[j].upper_wall_velocity == one.upper_wall_velocity);
+        }
+        CHECK(all[0].open);
+        CHECK_FALSE(all[1].open);
+    }
 }
 
 // What diagnostics::hot_spot reads of a solver, and nothing else: particles with positions,

@@ -43,39 +43,61 @@ void check_line(int axis, double strip_half_width) {
     require_positive("strip half-width (m)", strip_half_width);
 }
 
-// The particles of `body` in the strip around the line through `point` along `axis`, sorted
-// by coordinate along the line. From 4096 particles the strip is gathered on the solver's
-// threads, a block of consecutive particles each, and the blocks' points joined in block
-// order: the sequence the serial pass gathers, so the sort returns the same.
+// A line to gather a strip around: the particles of `body` whose centres lie within
+// `half_width` of the line through `point` along `axis`.
+template <class Vector>
+struct strip_line {
+    std::uint32_t body;
+    int axis;
+    Vector point;
+    double half_width;
+};
+
+// The strips around several lines, in one pass over the particles: strips(s, lines)[j] holds
+// the particles of the strip around lines[j], sorted by coordinate along its line. From 4096
+// particles the strips are gathered on the solver's threads, a block of consecutive particles
+// each, and each line's points joined in block order: the sequence the serial pass gathers, so
+// the sort returns the same, and a line's strip is the same whatever other lines are asked.
 template <class Solver>
-std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
-                               double strip_half_width) {
-    check_line<Solver>(axis, strip_half_width);
+std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<strip_line<typename Solver::vector>>& lines) {
+    for (const auto& line : lines) check_line<Solver>(line.axis, line.half_width);
     const auto& store = s.particles();
     const auto& x = store.template column<fields::position>();
     const auto& v = store.template column<fields::velocity>();
     const auto& b = store.template column<fields::body>();
     const auto& v0 = store.template column<fields::volume0>();
-    const std::size_t n = store.size();
+    const std::size_t n = store.size(), m = lines.size();
     const int threads = gimlet::detail::threads_of(s);
     const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
-    std::vector<std::vector<strip_point>> found(blocks);
+    std::vector<std::vector<strip_point>> found(blocks * m);  // block k's points of line j at k * m + j
     gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t k, std::size_t first, std::size_t last) {
-        auto& out = found[k];
-        for (std::size_t i = first; i < last; ++i) {
-            if (b[i] != body) continue;
-            bool inside = true;
-            for (int d = 0; d < Solver::dim; ++d)
-                if (d != axis && std::abs(double(x[i][d] - point[d])) > strip_half_width) inside = false;
-            if (!inside) continue;
-            const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
-            out.push_back({double(x[i][axis]), half, double(v[i][axis])});
-        }
+        for (std::size_t i = first; i < last; ++i)
+            for (std::size_t j = 0; j < m; ++j) {
+                const auto& line = lines[j];
+                if (b[i] != line.body) continue;
+                bool inside = true;
+                for (int d = 0; d < Solver::dim; ++d)
+                    if (d != line.axis && std::abs(double(x[i][d] - line.point[d])) > line.half_width) inside = false;
+                if (!inside) continue;
+                const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
+                found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
+            }
     });
-    std::vector<strip_point> out = std::move(found[0]);
-    for (std::size_t k = 1; k < blocks; ++k) out.insert(out.end(), found[k].begin(), found[k].end());
-    std::sort(out.begin(), out.end());
+    std::vector<std::vector<strip_point>> out(m);
+    for (std::size_t j = 0; j < m; ++j) {
+        out[j] = std::move(found[j]);
+        for (std::size_t k = 1; k < blocks; ++k) out[j].insert(out[j].end(), found[k * m + j].begin(), found[k * m + j].end());
+        std::sort(out[j].begin(), out[j].end());
+    }
     return out;
+}
+
+// The particles of `body` in the strip around the line through `point` along `axis`, sorted
+// by coordinate along the line (strips, for one line).
+template <class Solver>
+std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
+                               double strip_half_width) {
+    return std::move(strips(s, {{body, axis, point, strip_half_width}})[0]);
 }
 
 // Mean velocity of the strip particles with coordinate in [lo, hi] (the wall particle is one).
@@ -105,8 +127,9 @@ struct surface_gap_result {
 template <class Solver>
 [[nodiscard]] surface_gap_result surface_gap(const Solver& s, std::uint32_t lower, std::uint32_t upper, int axis,
                                              const typename Solver::vector& point, double strip_half_width) {
-    const auto lo = detail::strip(s, lower, axis, point, strip_half_width);
-    const auto hi = detail::strip(s, upper, axis, point, strip_half_width);
+    const auto both = detail::strips(s, {{lower, axis, point, strip_half_width}, {upper, axis, point, strip_half_width}});
+    const auto& lo = both[0];
+    const auto& hi = both[1];
     surface_gap_result r;
     if (lo.empty() || hi.empty()) return r;
     r.found = true;
@@ -132,20 +155,11 @@ struct void_chord_result {
     [[nodiscard]] double centre() const noexcept { return 0.5 * (lower_wall + upper_wall); }
 };
 
-/// The void of body `body` crossed by the line through `point` along `axis`: the gap between
-/// consecutive particle domains in the strip that contains point[axis] (or, if none does, the
-/// nearest one), provided it is wider than `min_width` (m). A wall's velocity is the mean over
-/// the strip's particles within three quarters of a particle spacing of the wall particle,
-/// behind it: the wall's own particle layer, not the next one (compression brings that no
-/// closer than about 0.9 spacing).
-template <class Solver>
-[[nodiscard]] void_chord_result void_chord(const Solver& s, std::uint32_t body, int axis,
-                                           const typename Solver::vector& point, double strip_half_width,
-                                           double min_width) {
-    require_positive("void threshold width (m)", min_width);
-    const auto pts = detail::strip(s, body, axis, point, strip_half_width);
+namespace detail {
+
+// void_chord's result from the strip around its line (`target` the point's coordinate along it).
+inline void_chord_result chord(const std::vector<strip_point>& pts, double target, double min_width) {
     void_chord_result r;
-    const double target = double(point[axis]);
     double best_distance = std::numeric_limits<double>::infinity();
     std::size_t best = 0;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
@@ -161,9 +175,49 @@ template <class Solver>
     const auto& above = pts[best + 1];
     r.lower_wall = below.coordinate + below.half_spacing;
     r.upper_wall = above.coordinate - above.half_spacing;
-    r.lower_wall_velocity = detail::layer_velocity(pts, below.coordinate - 1.5 * below.half_spacing, below.coordinate);
-    r.upper_wall_velocity = detail::layer_velocity(pts, above.coordinate, above.coordinate + 1.5 * above.half_spacing);
+    r.lower_wall_velocity = layer_velocity(pts, below.coordinate - 1.5 * below.half_spacing, below.coordinate);
+    r.upper_wall_velocity = layer_velocity(pts, above.coordinate, above.coordinate + 1.5 * above.half_spacing);
     return r;
+}
+
+}  // namespace detail
+
+/// The void of body `body` crossed by the line through `point` along `axis`: the gap between
+/// consecutive particle domains in the strip that contains point[axis] (or, if none does, the
+/// nearest one), provided it is wider than `min_width` (m). A wall's velocity is the mean over
+/// the strip's particles within three quarters of a particle spacing of the wall particle,
+/// behind it: the wall's own particle layer, not the next one (compression brings that no
+/// closer than about 0.9 spacing).
+template <class Solver>
+[[nodiscard]] void_chord_result void_chord(const Solver& s, std::uint32_t body, int axis,
+                                           const typename Solver::vector& point, double strip_half_width,
+                                           double min_width) {
+    require_positive("void threshold width (m)", min_width);
+    return detail::chord(detail::strip(s, body, axis, point, strip_half_width), double(point[axis]), min_width);
+}
+
+/// A line for void_chords: the void of `body` crossed by the line through `point` along `axis`.
+template <class Vector>
+struct chord_line {
+    std::uint32_t body;
+    int axis;
+    Vector point;
+};
+
+/// void_chord along each of `lines`, in one pass over the particles rather than one a line:
+/// result j is void_chord(s, lines[j].body, lines[j].axis, lines[j].point, strip_half_width,
+/// min_width), bit for bit. For an observer that cuts the same state along several lines.
+template <class Solver>
+[[nodiscard]] std::vector<void_chord_result> void_chords(const Solver& s,
+                                                         const std::vector<chord_line<typename Solver::vector>>& lines,
+                                                         double strip_half_width, double min_width) {
+    require_positive("void threshold width (m)", min_width);
+    std::vector<detail::strip_line<typename Solver::vector>> around;
+    for (const auto& line : lines) around.push_back({line.body, line.axis, line.point, strip_half_width});
+    const auto pts = detail::strips(s, around);
+    std::vector<void_chord_result> out;
+    for (std::size_t j = 0; j < lines.size(); ++j) out.push_back(detail::chord(pts[j], double(lines[j].point[lines[j].axis]), min_width));
+    return out;
 }
 
 }  // namespace gimlet::diagnostics
