@@ -570,6 +570,12 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
             CHECK(r.max_temperature == one.max_temperature);
         }
     }
+    // No particles: no disc and no hottest particle, as where every temperature is NaN.
+    particles_only<Dim> none;
+    const auto empty = gimlet::diagnostics::hot_spot(none, radius);
+    CHECK(empty.temperature == -std::numeric_limits<double>::infinity());
+    CHECK(std::isnan(empty.max_temperature));
+    CHECK(empty.particles == 0);
 }
 
 TEST_CASE("hot_spot: a disc before the hottest particle that ties with its disc is not skipped", "[diagnostics]") {

@@ -23,8 +23,8 @@ namespace gimlet::diagnostics {
 
 template <class Vector>
 struct hot_spot_result {
-    double temperature = 0;      ///< K: mass-weighted mean temperature in the hottest disc
-    double max_temperature = 0;  ///< K: the hottest single particle
+    double temperature = 0;      ///< K: mass-weighted mean temperature in the hottest disc (-infinity: none)
+    double max_temperature = 0;  ///< K: the hottest single particle (NaN: none)
     Vector centre{};             ///< m: the particle centre the hottest disc is centred on (zero if none)
     std::size_t particles = 0;   ///< particles in that disc
 };
@@ -62,7 +62,8 @@ struct hot_spot_workspace {
 /// +infinity `above` is ignored (as -infinity): the hottest disc is returned.
 ///
 /// max_temperature is the hottest particle's temperature, NaN never taken (NaN where every
-/// temperature is NaN; there is then no disc).
+/// temperature is NaN; there is then no disc). With no particles there is neither: temperature
+/// -infinity, max_temperature NaN, no particles, as where every temperature is NaN.
 ///
 /// `work` is scratch reused between calls (hot_spot_workspace of the solver's vector type);
 /// the overload without it makes its own.
@@ -80,7 +81,11 @@ template <class Solver>
     hot_spot_result<vector> r;
     r.centre = vector::Zero();
     const std::size_t n = store.size();
-    if (n == 0) return r;
+    if (n == 0) {  // no disc and no hottest particle (not 0 K, which would read as a temperature)
+        r.temperature = -std::numeric_limits<double>::infinity();
+        r.max_temperature = std::numeric_limits<double>::quiet_NaN();
+        return r;
+    }
 
     // The passes over the particles run on the solver's threads from 4096 particles, in
     // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
