@@ -246,7 +246,7 @@ public:
                 for (int k = 1; k <= 5; ++k)
                     across.push_back({b, 0, S::vector(0.5 * width, axial[b].lower_wall + k / 6.0 * c.axial_chord)});
             }
-            // The widest of each open cavity's five.
+            // The widest of each open cavity's five (no pass where both are closed: no lines).
             const auto lateral = gimlet::diagnostics::void_chords(sol, across, strip, spacing);
             for (std::size_t j = 0; j < lateral.size(); ++j) {
                 auto& c = r.cavity[across[j].body];

@@ -465,6 +465,8 @@ TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and 
         CHECK(all[0].open);
         CHECK_FALSE(all[1].open);
     }
+    CHECK(gimlet::diagnostics::void_chords(runs[0], {}, strip, 0.25 * h).empty());
+    CHECK_THROWS_WITH(gimlet::diagnostics::void_chords(runs[0], {}, 0.0, 0.25 * h), Catch::Contains("strip half-width"));
 }
 
 // What diagnostics::hot_spot reads of a solver, and nothing else: particles with positions,

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace gimlet::diagnostics {
@@ -206,12 +207,15 @@ struct chord_line {
 
 /// void_chord along each of `lines`, in one pass over the particles rather than one a line:
 /// result j is void_chord(s, lines[j].body, lines[j].axis, lines[j].point, strip_half_width,
-/// min_width), bit for bit. For an observer that cuts the same state along several lines.
+/// min_width), bit for bit. For an observer that cuts the same state along several lines. No
+/// lines: no pass over the particles, and no results.
 template <class Solver>
 [[nodiscard]] std::vector<void_chord_result> void_chords(const Solver& s,
                                                          const std::vector<chord_line<typename Solver::vector>>& lines,
                                                          double strip_half_width, double min_width) {
     require_positive("void threshold width (m)", min_width);
+    require_positive("strip half-width (m)", strip_half_width);
+    if (lines.empty()) return {};
     std::vector<detail::strip_line<typename Solver::vector>> around;
     for (const auto& line : lines) around.push_back({line.body, line.axis, line.point, strip_half_width});
     const auto pts = detail::strips(s, around);

@@ -14,7 +14,8 @@
 /// It departs from the paper: the owner claims a shrinking part of what is left (guided
 /// self-scheduling, below) rather than a fixed 1/threads of it, and a thread done early goes
 /// round the other shares in order rather than to the most loaded one. The constants (an
-/// eighth, at most 1024 items, a (2 x threads)-th for another thread) were chosen, not tuned.
+/// eighth, at most 1024 items, a (2 x shares)-th for another thread, the shares being the
+/// threads up to 64) were chosen, not tuned.
 ///
 /// Which thread runs an item changes no result. The particle and node loops write each item's
 /// own outputs, and their reductions (minimum indices, maxima, integer counts) do not depend
@@ -93,7 +94,7 @@ public:
             // Polychronopoulos and Kuck 1987, "Guided self-scheduling: a practical scheduling
             // scheme for parallel supercomputers", IEEE Trans. Computers C-36(12)): its owner
             // takes an eighth of the rest (at most 1024 items), another thread a
-            // (2 x threads)-th. So the chunk that finishes a share is short, and a thread done
+            // (2 x shares)-th. So the chunk that finishes a share is short, and a thread done
             // early takes over little of a share whose owner is about done (moving little
             // data), but much of one whose owner is stalled. The rest is read before it is
             // claimed: a read shares the counter's cache line, where a claim on a finished
