@@ -23,8 +23,10 @@ namespace gimlet::diagnostics {
 
 template <class Vector>
 struct hot_spot_result {
-    double temperature = 0;      ///< K: mass-weighted mean temperature in the hottest disc (-infinity: none)
-    double max_temperature = 0;  ///< K: the hottest single particle (NaN: none)
+    /// K: mass-weighted mean temperature in the hottest disc (-infinity: none)
+    double temperature = -std::numeric_limits<double>::infinity();
+    /// K: the hottest single particle (NaN: none)
+    double max_temperature = std::numeric_limits<double>::quiet_NaN();
     Vector centre{};             ///< m: the particle centre the hottest disc is centred on (zero if none)
     std::size_t particles = 0;   ///< particles in that disc
 };
@@ -81,11 +83,7 @@ template <class Solver>
     hot_spot_result<vector> r;
     r.centre = vector::Zero();
     const std::size_t n = store.size();
-    if (n == 0) {  // no disc and no hottest particle (not 0 K, which would read as a temperature)
-        r.temperature = -std::numeric_limits<double>::infinity();
-        r.max_temperature = std::numeric_limits<double>::quiet_NaN();
-        return r;
-    }
+    if (n == 0) return r;  // no disc and no hottest particle: the result's defaults say none
 
     // The passes over the particles run on the solver's threads from 4096 particles, in
     // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
@@ -237,11 +235,7 @@ template <class Solver>
     std::size_t hottest = none;
     for (const std::size_t h : block_hottest)
         if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
-    if (hottest == none) {
-        r.max_temperature = std::numeric_limits<double>::quiet_NaN();
-        r.temperature = -std::numeric_limits<double>::infinity();
-        return r;
-    }
+    if (hottest == none) return r;  // none, as the result's defaults say
     r.max_temperature = double(T[hottest]);
     // A centre whose bins' hottest particle is cooler than the disc around the hottest particle
     // (or than `above`, whichever is hotter: the floor) cannot hold the hottest disc, since its
