@@ -15,17 +15,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace cavity_collapse {
 
 using S = gimlet::space<2>;
 using material = gimlet::materials::hmx_material<>;
-// The paper's temperature (Walsh-Christian in V plus plastic work) on the same EOS, for
-// side-by-side reproduction (cavity_collapse --temperature paper).
-using paper_material = gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy,
-                                                       gimlet::materials::paper_temperature>;
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
 constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's sides
@@ -62,12 +60,93 @@ struct settings {
     bool volume_filter = false;      // solver_options::volume_filter (needs consistent_mass >= 1)
     double viscosity_linear = example::hmx_defaults::viscosity_linear;
     double viscosity_quadratic = example::hmx_defaults::viscosity_quadratic;
-    bool paper_temperature = false;  // the paper's temperature (paper_material) instead of make_hmx()'s
+    bool paper_temperature = false;  // the paper's temperature (chosen_temperature) instead of make_hmx()'s
     // Self-contact (multi_field::self_contact): each block's two sides of its closing cavity in
     // separate velocity fields where they meet. Needs a multi-field contact (not single).
     bool self_contact = true;
     int threads = 0;
 };
+
+// ---- The binary's run-time choices (--contact, --temperature) as policies
+// The binary compiles one solver for the single field and one for both multi-field laws and
+// both temperatures, instead of one per combination (six): the example builds in about a third
+// of the time (docs/testing.md). Each forwards every call to the library's policy that the flag
+// names, so a run computes what that policy alone computes, bit for bit; the price is one
+// predictable branch per call. Both are written to the contracts in docs/concepts.md.
+
+/// contact::bardenhagen or contact::distance (with their defaults: no friction, the paper's
+/// switching distance of half a cell), as --contact chose.
+class chosen_law {
+public:
+    static constexpr bool multi_field = true;
+    using required_fields = gimlet::field_list<>;
+
+    explicit chosen_law(contact_kind kind) : distance_(kind == contact_kind::distance) {
+        if (kind == contact_kind::single)
+            throw std::invalid_argument("cavity_collapse::chosen_law: --contact single is not a multi-field law");
+    }
+
+    template <gimlet::Space Sp>
+    [[nodiscard]] bool in_contact(const gimlet::contact::pair_view<Sp>& pair) const noexcept {
+        return distance_ ? distance_law_.in_contact(pair) : bardenhagen_law_.in_contact(pair);
+    }
+    [[nodiscard]] double friction() const noexcept {
+        return distance_ ? distance_law_.friction() : bardenhagen_law_.friction();
+    }
+
+private:
+    bool distance_;
+    gimlet::contact::bardenhagen bardenhagen_law_;
+    gimlet::contact::distance distance_law_;
+};
+static_assert(gimlet::contact::Law<chosen_law>);
+
+/// thermal::isentrope_temperature (the default) or the paper's Walsh-Christian temperature
+/// (materials::paper_temperature, --temperature paper), both built from the same constants.
+class chosen_temperature {
+public:
+    static constexpr bool enabled = true;
+    using required_fields = gimlet::field_list<gimlet::fields::temperature>;
+
+    /// The arguments materials::make_hmx gives a thermal policy; the isentrope's until use_paper(true).
+    chosen_temperature(double density0, double sound_speed, double slope, double gruneisen, double specific_heat,
+                       double initial_temperature)
+        : isentrope_(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature),
+          paper_(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature) {}
+
+    void use_paper(bool on) noexcept { paper_on_ = on; }
+    [[nodiscard]] bool uses_paper() const noexcept { return paper_on_; }
+
+    template <class P>
+    void initialize(const P& p) const {
+        if (paper_on_) paper_.initialize(p);
+        else isentrope_.initialize(p);
+    }
+    template <class Real, class P>
+    void update(const gimlet::point_step<Real>& st, Real dissipated, const P& p) const {
+        if (paper_on_) paper_.update(st, dissipated, p);
+        else isentrope_.update(st, dissipated, p);
+    }
+    /// The reference isentrope's energy, which the volume filter moves the energy along: the
+    /// paper's temperature has none, and validate() refuses the filter with it (as the solver
+    /// refuses it for materials::paper_temperature).
+    [[nodiscard]] double reference_energy(double j) const { return isentrope_.reference_energy(j); }
+
+    // The constants the material checks against its EOS (material.hpp): the same in both.
+    [[nodiscard]] double density0() const noexcept { return isentrope_.density0(); }
+    [[nodiscard]] double sound_speed() const noexcept { return isentrope_.sound_speed(); }
+    [[nodiscard]] double slope() const noexcept { return isentrope_.slope(); }
+    [[nodiscard]] double gruneisen() const noexcept { return isentrope_.gruneisen(); }
+
+private:
+    gimlet::thermal::isentrope_temperature isentrope_;
+    gimlet::materials::paper_temperature paper_;
+    bool paper_on_ = false;
+};
+static_assert(gimlet::thermal::Thermal<chosen_temperature>);
+
+/// The binary's material: HMX with the temperature --temperature chose (make_scene sets it).
+using run_material = gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy, chosen_temperature>;
 
 // The lower block is body 0, the upper block body 1.
 inline double interface_y() { return height + 0.5 * gap; }
@@ -87,6 +166,12 @@ inline void validate(const settings& s) {
     if (s.self_contact && s.contact == contact_kind::single)
         throw gimlet::invalid_parameter("--self-contact with --contact single", "on",
                                         "off (self-contact needs a multi-field contact: distance or bardenhagen)");
+    // The solver refuses the filter for a thermal policy without the reference isentrope (the
+    // paper's); chosen_temperature always has one, so the flags are refused here.
+    if (s.volume_filter && s.paper_temperature)
+        throw gimlet::invalid_parameter("--volume-filter with --temperature paper", "on",
+                                        "off (the filter moves each particle's energy along the reference isentrope, "
+                                        "which the paper's temperature does not use)");
     const double cells_x = width / s.cell, cells_gap = gap / s.cell;
     gimlet::require(std::abs(cells_x - std::round(cells_x)) < 1e-9 * cells_x &&
                         std::abs(cells_gap - std::round(cells_gap)) < 1e-9 * cells_gap,
@@ -117,9 +202,9 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, M> scene(gs);
-    const auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy,
-                                                 typename M::thermal_type>(
+    auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
         {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
+    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>) hmx.thermal.use_paper(s.paper_temperature);
     const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
     const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
     const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);

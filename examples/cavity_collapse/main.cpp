@@ -166,8 +166,8 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0}};
 }
 
-template <class Contact, class Material>
-int run(const settings& s, const run_files& io) {
+template <class Contact>
+int run(const settings& s, const run_files& io, const Contact& contact) {
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
@@ -180,8 +180,8 @@ int run(const settings& s, const run_files& io) {
                                          gimlet::multi_field::by_body, gimlet::multi_field::self_contact>;
     partition part;
     if constexpr (std::is_same_v<partition, gimlet::multi_field::self_contact>) part.enabled = s.self_contact;
-    gimlet::solver<S, gimlet::shape::ugimp, Material, Contact, gimlet::field_list<>, partition> sol(
-        make_scene<Material>(s), opt, Contact{}, part);
+    gimlet::solver<S, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
+        make_scene<run_material>(s), opt, contact, part);
     const auto& out = io.out;
     monitor mon(s);
     summary sum;
@@ -420,18 +420,11 @@ int main(int argc, char** argv) try {
         throw std::invalid_argument("--checkpoint-at-us = " + std::to_string(io.checkpoint_at * 1e6) +
                                     " is invalid; valid range: [0, --end-us) so the run reaches it");
 
-    // Every flag combination a user may give is one binary: 3 contact laws x 2 temperature
-    // policies, six solvers compiled in this unit (48 s under asan-ubsan, over the growth
-    // guard: docs/testing.md). Splitting it into units would not lower the CPU time, and the
-    // build starts it first so it never runs alone at the end.
-    auto with = [&]<class Material>() {
-        switch (s.contact) {
-            case contact_kind::single: return run<gimlet::contact::single_field, Material>(s, io);
-            case contact_kind::bardenhagen: return run<gimlet::contact::bardenhagen, Material>(s, io);
-            default: return run<gimlet::contact::distance, Material>(s, io);
-        }
-    };
-    const int rc = s.paper_temperature ? with.template operator()<paper_material>() : with.template operator()<material>();
+    // Every flag combination a user may give is one binary of two solvers: the single field, and
+    // a multi-field law with the temperature chosen at run time (chosen_law, chosen_temperature in
+    // cavity_collapse.hpp), instead of six (3 contact laws x 2 temperatures).
+    const int rc = s.contact == contact_kind::single ? run(s, io, gimlet::contact::single_field{})
+                                                     : run(s, io, chosen_law(s.contact));
     if (!figures) return rc;
     // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
     const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";

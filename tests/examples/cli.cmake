@@ -95,7 +95,7 @@ gimlet_cli_case(cavity_collapse self_contact_unknown "--self-contact maybe" "--s
 gimlet_cli_case(cavity_collapse self_contact_single "--contact single --self-contact on" "--self-contact with --contact single = on is invalid")
 gimlet_cli_case(cavity_collapse pic_negative "--pic-fraction -0.5" "--pic-fraction = -0.5 is invalid; valid range: [0, 1]")
 gimlet_cli_case(cavity_collapse consistent_negative "--consistent-mass -1" "--consistent-mass = -1 is invalid; valid: a whole number in [0, 5]")
-gimlet_cli_case(cavity_collapse filter_paper "--consistent-mass 1 --volume-filter on --temperature paper" "volume_filter = true is invalid; valid range: false for this material")
+gimlet_cli_case(cavity_collapse filter_paper "--consistent-mass 1 --volume-filter on --temperature paper" "--volume-filter with --temperature paper = on is invalid; valid range: off")
 gimlet_cli_case(cavity_collapse viscosity_nan  "--viscosity-quadratic nan" "--viscosity-quadratic = nan is invalid; valid range: [0, 10]")
 gimlet_cli_case(cavity_collapse unknown_flag   "--time-us 5"       "unknown flag --time-us")
 gimlet_cli_case(cavity_collapse output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
