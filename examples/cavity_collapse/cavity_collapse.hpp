@@ -86,8 +86,10 @@ public:
             throw std::invalid_argument("cavity_collapse::chosen_law: --contact single is not a multi-field law");
     }
 
+    // Always inlined, as the library's own hot members are (docs/concepts.md): the law is asked at
+    // every contact node, the temperature updated at every particle.
     template <gimlet::Space Sp>
-    [[nodiscard]] bool in_contact(const gimlet::contact::pair_view<Sp>& pair) const noexcept {
+    [[nodiscard, gnu::always_inline]] inline bool in_contact(const gimlet::contact::pair_view<Sp>& pair) const noexcept {
         return distance_ ? distance_law_.in_contact(pair) : bardenhagen_law_.in_contact(pair);
     }
     [[nodiscard]] double friction() const noexcept {
@@ -123,7 +125,7 @@ public:
         else isentrope_.initialize(p);
     }
     template <class Real, class P>
-    void update(const gimlet::point_step<Real>& st, Real dissipated, const P& p) const {
+    [[gnu::always_inline]] inline void update(const gimlet::point_step<Real>& st, Real dissipated, const P& p) const {
         if (paper_on_) paper_.update(st, dissipated, p);
         else isentrope_.update(st, dissipated, p);
     }
