@@ -69,8 +69,8 @@ struct settings {
 
 // ---- The binary's run-time choices (--contact, --temperature) as policies
 // The binary compiles one solver for the single field and one for both multi-field laws and
-// both temperatures, instead of one per combination (six): the example builds in about a third
-// of the time (docs/testing.md). Each forwards every call to the library's policy that the flag
+// both temperatures, instead of one per combination (six): the example builds in about half
+// the time (docs/testing.md). Each forwards every call to the library's policy that the flag
 // names, so a run computes what that policy alone computes, bit for bit; the price is one
 // predictable branch per call. Both are written to the contracts in docs/concepts.md.
 
@@ -132,7 +132,12 @@ public:
     /// The reference isentrope's energy, which the volume filter moves the energy along: the
     /// paper's temperature has none, and validate() refuses the filter with it (as the solver
     /// refuses it for materials::paper_temperature).
-    [[nodiscard]] double reference_energy(double j) const { return isentrope_.reference_energy(j); }
+    [[nodiscard]] double reference_energy(double j) const {
+        if (paper_on_)
+            throw std::logic_error("cavity_collapse::chosen_temperature: the volume filter with the paper's temperature "
+                                   "(validate() refuses --volume-filter on with --temperature paper)");
+        return isentrope_.reference_energy(j);
+    }
 
     // The constants the material checks against its EOS (material.hpp): the same in both.
     [[nodiscard]] double density0() const noexcept { return isentrope_.density0(); }

@@ -91,6 +91,16 @@ TEST_CASE("cavity_collapse's chosen temperature is the isentrope's or the paper'
     CHECK(chosen.reference_energy(0.93) == isentrope.reference_energy(0.93));
     chosen.use_paper(true);
     CHECK(after_step(chosen) == after_step(paper));
+    // Its reference energy is the isentrope's, for the volume filter; with the paper's temperature
+    // there is none.
+    CHECK_THROWS_AS(chosen.reference_energy(0.93), std::logic_error);
+    // The binary's scene carries the temperature --temperature named.
+    for (const bool paper_flag : {false, true}) {
+        cavity_collapse::settings flags;
+        flags.paper_temperature = paper_flag;
+        const auto scene = cavity_collapse::make_scene<cavity_collapse::run_material>(flags);
+        for (const auto& body : scene.bodies()) CHECK(body.material.thermal.uses_paper() == paper_flag);
+    }
     // The volume filter needs the isentrope: refused with the paper's temperature, by name.
     cavity_collapse::settings s;
     s.paper_temperature = true;
