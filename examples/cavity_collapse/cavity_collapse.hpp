@@ -89,7 +89,8 @@ public:
     // Always inlined, as the library's own hot members are (docs/concepts.md): the law is asked at
     // every contact node, the temperature updated at every particle.
     template <gimlet::Space Sp>
-    [[nodiscard, gnu::always_inline]] inline bool in_contact(const gimlet::contact::pair_view<Sp>& pair) const noexcept {
+    [[nodiscard, gnu::always_inline]] inline bool in_contact(
+        const gimlet::contact::pair_view<Sp>& pair) const noexcept {
         return distance_ ? distance_law_.in_contact(pair) : bardenhagen_law_.in_contact(pair);
     }
     [[nodiscard]] double friction() const noexcept {
@@ -134,8 +135,8 @@ public:
     /// refuses it for materials::paper_temperature).
     [[nodiscard]] double reference_energy(double j) const {
         if (paper_on_)
-            throw std::logic_error("cavity_collapse::chosen_temperature: the volume filter with the paper's temperature "
-                                   "(validate() refuses --volume-filter on with --temperature paper)");
+            throw std::logic_error("cavity_collapse::chosen_temperature: the volume filter with the paper's "
+                                   "temperature (validate() refuses --volume-filter on with --temperature paper)");
         return isentrope_.reference_energy(j);
     }
 
@@ -153,7 +154,8 @@ private:
 static_assert(gimlet::thermal::Thermal<chosen_temperature>);
 
 /// The binary's material: HMX with the temperature --temperature chose (make_scene sets it).
-using run_material = gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy, chosen_temperature>;
+using run_material =
+    gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy, chosen_temperature>;
 
 // The lower block is body 0, the upper block body 1.
 inline double interface_y() { return height + 0.5 * gap; }
@@ -211,7 +213,8 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
     gimlet::scene::scene<S, M> scene(gs);
     auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
         {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
-    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>) hmx.thermal.use_paper(s.paper_temperature);
+    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
+        hmx.thermal.use_paper(s.paper_temperature);
     const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
     const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
     const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);
