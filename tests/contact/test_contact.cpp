@@ -107,6 +107,12 @@ struct energy_adding {
 };
 static_assert(contact::Law<approach_only> && contact::Law<energy_adding>);
 static_assert(contact::Contact<approach_only> && contact::Contact<energy_adding>);
+// A law with no fields of its own shares the rest of the solver with the library's laws
+// (gimlet::solver_core): a second law compiles only its own part of the step.
+template <class Law>
+using elastic_2d_core = typename gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, Law>::core_type;
+static_assert(std::is_same_v<elastic_2d_core<approach_only>, elastic_2d_core<contact::distance>> &&
+              std::is_same_v<elastic_2d_core<always_stick>, elastic_2d_core<contact::bardenhagen>>);
 struct approach_only_case {
     using type = approach_only;
     static type make() { return {}; }

@@ -46,8 +46,9 @@ enum class pass { decide, remap, trial, keep };
 
 /// The state of multi-field contact in a solver: per field and node the mass gradient (the
 /// scatter fills it), and per step the shared nodes, their fields' normals, each pair's normal
-/// and reach, and the pairs the deciding pass engaged.
-template <Space S, contact::Contact C>
+/// and reach, and the pairs the deciding pass engaged. Only resolve() depends on the contact
+/// policy, so solvers that differ only in their law share the rest (gimlet::solver_core).
+template <Space S>
 class exchange {
 public:
     using real = typename S::real;
@@ -193,10 +194,11 @@ public:
 
     // At every node shared by two or more fields, let the contact policy correct the fields'
     // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
+    template <contact::Contact C>
     void resolve(pass pass, grid<S>& grid, C& contact, real dt, real cutoff) {
         const std::size_t nodes = grid.size();
-        tally_type pass_tally{};
-        tally_type* tally = &pass_tally;
+        tally_type<C> pass_tally{};
+        tally_type<C>* tally = &pass_tally;
         const bool trial = pass == pass::trial, deciding = trial || pass == pass::decide;
         if (trial) {
             // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
@@ -260,7 +262,7 @@ public:
             }
         }
         grid.apply_walls(grid.velocity, pass == pass::remap ? wall_pass::keep : wall_pass::decide);
-        if constexpr (counting) contact.record(std::as_const(pass_tally));
+        if constexpr (counting<C>) contact.record(std::as_const(pass_tally));
         else (void)tally;
     }
 
@@ -291,21 +293,28 @@ public:
 
 private:
     // A contact law's counters (contact::Counting), or nothing.
-    static constexpr bool counting = [] {
+    template <class C>
+    static constexpr bool counts() {
         if constexpr (requires { typename C::tally; }) return contact::Counting<C, S>;
         else return false;
-    }();
+    }
+    template <class C>
+    static constexpr bool counting = counts<C>();
     struct no_tally {};
-    using tally_type = typename decltype([] {
-        if constexpr (counting) return std::type_identity<typename C::tally>{};
+    template <class C>
+    static auto tally_identity() {
+        if constexpr (counting<C>) return std::type_identity<typename C::tally>{};
         else return std::type_identity<no_tally>{};
-    }())::type;
+    }
+    template <class C>
+    using tally_type = typename decltype(tally_identity<C>())::type;
 
     // The policy's correction at one node: the framework's for a contact::Law, its own for a
     // contact::NodeResolver.
-    static void resolve_node(contact::node_view<S>& view, C& contact, tally_type* tally) {
+    template <class C>
+    static void resolve_node(contact::node_view<S>& view, C& contact, tally_type<C>* tally) {
         if constexpr (contact::Law<C>) {
-            if constexpr (counting) multi_field::correct(view, contact, tally);
+            if constexpr (counting<C>) multi_field::correct(view, contact, tally);
             else multi_field::correct(view, contact);
         } else {
             (void)tally;

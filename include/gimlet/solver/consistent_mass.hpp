@@ -39,8 +39,8 @@
 
 namespace gimlet {
 
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::consistent_mass_forces() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::consistent_mass_forces() {
     const int iterations = options_.consistent_mass_iterations;
     if (iterations <= 0) return;
     const std::size_t ne = grid_.entries();

@@ -27,8 +27,8 @@ namespace gimlet {
 // sizes (a mass test made a body seeded at 5 x 5 particles per cell light beside one seeded
 // at 1, and its treatment then removed 9-16 % of the energy of their impact, where nothing
 // was flung without it: docs/equations.md, "Light particles").
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::reference_density(std::size_t i) const -> real {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::reference_density(std::size_t i) const -> real {
     return particles_.template column<fields::mass>()[i] / particles_.template column<fields::volume0>()[i];
 }
 
@@ -37,8 +37,8 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::reference_density(std::size_t i) co
 // so none can be where the least dense particle is at least theta times the densest: of the
 // scene, or with a multi-field contact (whose fields never mix bodies) of each body. Then
 // nothing below runs.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::check_light_possible() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::check_light_possible() {
     const auto& body = particles_.template column<fields::body>();
     light_possible_ = false;
     if (particles_.size() == 0 || !(options_.light_particle_ratio > 0)) return;
@@ -61,8 +61,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::check_light_possible() {
 // nodes of the light particles' stencils, the mass of the particles that are not light,
 // sum_q S_iq m_q (a sum of its own rather than m_i less the light mass, whose rounding would not
 // cancel where the light mass dominates).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::find_light_particles() {
     light_list_.clear();
     if (!light_possible_) return;
     const auto& m = particles_.template column<fields::mass>();
@@ -115,14 +115,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::find_light_particles() {
 }
 
 // A node's reliability k_i = m_i / rho_i^max (zero where no particle weighs it).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::reliability(std::size_t e) const -> real {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::reliability(std::size_t e) const -> real {
     return node_densest_[e] > 0 ? grid_.mass[e] / node_densest_[e] : real(0);
 }
 
 // The mass of node entry e from particles that are not light (at the light particles' nodes).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::heavy_mass(std::size_t e) const -> real {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::heavy_mass(std::size_t e) const -> real {
     return node_heavy_mass_[e];
 }
 
@@ -130,8 +130,9 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::heavy_mass(std::size_t e) const -> 
 // L_p = sum_i (lambda_i v_i + (1 - lambda_i) vbar_p) (x) G_ip with lambda_i = k_i / max_j k_j and
 // vbar_p = sum_i S_ip k_i v_i / sum_i S_ip k_i: a node that carries little of the densest
 // material strains the particle by little (docs/equations.md, "Light particles").
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::light_velocity_gradient(std::size_t i, const std::vector<vector>& vg) const
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_velocity_gradient(
+    std::size_t i, const std::vector<vector>& vg) const
     -> matrix {
     matrix L = matrix::Zero();
     real k_max = 0, k_sum = 0;
@@ -165,8 +166,8 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::light_velocity_gradient(std::size_t
 // why and how much). Its FLIP velocity is the one grid_to_particles would give it, with its light
 // nodes' forces. A light particle none of whose nodes has non-light mass keeps its FLIP velocity
 // (there is nothing to return its momentum to): lightness::light_flip.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::move_light_particles(real dt) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::move_light_particles(real dt) {
     auto& x = particles_.template column<fields::position>();
     auto& v = particles_.template column<fields::velocity>();
     const auto& m = particles_.template column<fields::mass>();

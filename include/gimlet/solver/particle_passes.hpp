@@ -16,8 +16,8 @@ namespace gimlet {
 
 // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
 // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::update_material_points(real dt, const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(real dt, const std::vector<vector>& vg) {
     material_pass(dt, vg, true, [](std::size_t) { return true; });
 }
 
@@ -27,9 +27,9 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_material_points(real dt, con
 // lowest-numbered broken particle (n if none); an update's error is thrown for the
 // lowest-numbered particle once every particle is done, before the broken ones are reported
 // (as when the passes were separate).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <class After>
-std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, const std::vector<vector>& vg,
+std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part>::material_pass(real dt, const std::vector<vector>& vg,
                                                                      bool update_materials, After&& after) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     std::ptrdiff_t failed = n, first_bad = n;
@@ -62,8 +62,9 @@ std::ptrdiff_t solver<S, Sh, M, C, ExtraFields, Part>::material_pass(real dt, co
 // The velocity gradient L_p = sum_i v_i (x) G_ip of particle i from the grid velocities vg
 // (a light particle's from its reliable nodes), with volumetric averaging the cell's mean
 // volumetric rate.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::velocity_gradient(std::size_t i, const std::vector<vector>& vg) const -> matrix {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::velocity_gradient(
+    std::size_t i, const std::vector<vector>& vg) const -> matrix {
     matrix L = matrix::Zero();
     if (is_light(i)) {
         L = light_velocity_gradient(i, vg);
@@ -78,8 +79,9 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::velocity_gradient(std::size_t i, co
     return L;
 }
 
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i, real dt, const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_point(
+    std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
     const matrix L = velocity_gradient(i, vg);
     gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
@@ -89,8 +91,9 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_material_point(std::size_t i
 // materials; gimlet::update_material_points_2): the same bits as one at a time. False, with
 // nothing written, for two bodies or where either particle would stop the run: the caller
 // then updates them one at a time, which names the particle.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-bool solver<S, Sh, M, C, ExtraFields, Part>::update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+bool solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_pair(
+    std::size_t i, real dt, const std::vector<vector>& vg) {
 #if GIMLET_HAS_LANES
     if constexpr (material_group == 2) {
         const auto& body = particles_.template column<fields::body>();
@@ -114,8 +117,8 @@ bool solver<S, Sh, M, C, ExtraFields, Part>::update_material_pair(std::size_t i,
 // The particle's body (or with a partition, its field at that node) and grid cell, as one
 // index: the first node of its stencil (a cell for a given shape) in its block of nodes. Two
 // bodies, or two fields of one body, are never averaged together.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::cell_key(std::size_t i) const -> std::size_t {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::cell_key(std::size_t i) const -> std::size_t {
     std::size_t flat = 0;
     for (int d = 0; d < dim; ++d) flat += std::size_t(stencils_[i].offset[d][0]);
     std::size_t block = particles_.template column<fields::body>()[i];
@@ -127,8 +130,8 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::cell_key(std::size_t i) const -> st
 // mean stress tr(sigma_p)/dim replaced by its cell's volume-weighted mean (B-bar: the power
 // these forces do on the grid velocities is then exactly the stress power of the averaged
 // rates, sum_p V_p sigma_p : L-bar_p, so averaging creates no energy).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::force_stress(std::size_t i) const -> matrix {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i) const -> matrix {
     const matrix& sig = particles_.template column<fields::stress>()[i];
     const real v = current_volume(particles_[i]);
     if (!options_.volumetric_average) return v * sig;
@@ -139,8 +142,8 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::force_stress(std::size_t i) const -
 }
 
 // Per body (or field) and cell (cell_key), the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::average_mean_stress() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::average_mean_stress() {
     const std::size_t n = materials_.size() * fields_per_body * grid_.size();
     cell_stress_.assign(n, real(0));
     cell_stress_volume_.assign(n, real(0));
@@ -156,8 +159,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::average_mean_stress() {
 // Per body (or field) and cell (cell_key), the sums of V_p tr L_p and of V_p over its particles, with L_p from the
 // velocities vg. A particle's cell lies in its own slab, so the slab colouring keeps the sums
 // free of races and in a fixed order.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std::vector<vector>& vg) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::average_volumetric_rates(const std::vector<vector>& vg) {
     const std::size_t n = materials_.size() * fields_per_body * grid_.size();
     cell_rate_.assign(n, real(0));
     cell_volume_.assign(n, real(0));
@@ -180,8 +183,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::average_volumetric_rates(const std:
 // USL), then what check_particles does (wrap, stop on a broken particle). A material error
 // is reported before a failed check, each for the lowest-numbered particle, as when the
 // passes were separate.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::finish_step(real dt, bool update_materials) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::finish_step(real dt, bool update_materials) {
     auto& x = particles_.template column<fields::position>();
     const std::ptrdiff_t first_bad = material_pass(dt, grid_.velocity, update_materials, [&](std::size_t i) {
         grid_.wrap(x[i]);
@@ -197,8 +200,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::finish_step(real dt, bool update_ma
 
 // Stable counting sort of the particles on the first node of their stencil (a cell of the
 // grid), applied to every field and to the stencils.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::sort_by_cell() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::sort_by_cell() {
     const std::size_t n = particles_.size(), cells = grid_.size();
     std::vector<std::size_t> start(cells + 1, 0), order(n);
     auto key = [&](std::size_t i) {

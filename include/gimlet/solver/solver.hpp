@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -43,22 +44,24 @@
 
 namespace gimlet {
 
-/// The explicit GIMP/MPM solver (docs/physics.md section 1).
+/// The fields a solver's particles store: the union of the core's, the shape's, the material's,
+/// the contact policy's, the partition's and the user's (gimlet::solver's parameters).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+using solver_fields_t = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields,
+                                     typename C::required_fields, typename Part::required_fields, ExtraFields>;
+
+/// Everything of gimlet::solver but its contact policy: the particles, the grid, the passes
+/// of a step and the public members that read them. Solvers that differ only in their contact
+/// law (with the same fields) share it, so a program compiles this part once for all its laws:
+/// its members are the bulk of a solver type's code (docs/performance.md, "Memory, the largest
+/// scene, compile time"). Use gimlet::solver; name this type only to compile it once
+/// (`extern template class`).
 ///
-/// \tparam S  the space (dimension 2 = plane strain, or 3; float or double).
-/// \tparam Sh the shape-function policy (shape::Shape).
-/// \tparam M  the material bundle every body uses (gimlet::material<...>).
-/// \tparam C  the contact policy (contact::Contact).
-/// \tparam ExtraFields fields the user wants stored besides the policies' (their own tags for
-///         observers, or fields::external_acceleration for a per-particle body force).
-/// \tparam Part with multi-field contact, how each body is divided among velocity fields at the
-///         nodes (multi_field::Partition; default one field per body).
-///
-/// The particle store holds exactly the union of the fields the policies declare; a policy
-/// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
-          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
-class solver {
+/// \tparam Fields the particles' fields (solver_fields_t).
+/// \tparam MultiField whether the contact policy keeps a velocity field per body
+///         (contact::Contact's `multi_field`).
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+class solver_core {
 public:
     using space_type = S;
     using real = typename S::real;
@@ -67,149 +70,35 @@ public:
     using tensor3 = typename S::tensor3;
     using shape_type = Sh;
     using material_type = M;
-    using contact_type = C;
     using partition_type = Part;
-    using particle_fields = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields,
-                                          typename C::required_fields, typename Part::required_fields, ExtraFields>;
+    using particle_fields = Fields;
     using store_type = particle_store<S, particle_fields>;
     static constexpr int dim = S::dim;
 
-    static constexpr bool multi_field = C::multi_field;
-    // A policy's optional members in a form the solver would skip (an after_contact that is not
-    // const, say) stop the build with the checker's sentence instead.
-    static_assert(contact::check<C>() && multi_field::check<Part>());
+    static constexpr bool multi_field = MultiField;
+    // A policy's optional members in a form the solver would skip stop the build with the
+    // checker's sentence instead.
+    static_assert(multi_field::check<Part>());
     static constexpr std::size_t fields_per_body = Part::fields_per_body;
     // Fields of one body that no contact keeps apart would pass through each other.
     static_assert(multi_field || fields_per_body == 1,
                   "gimlet::solver: a partition with several fields per body needs a multi-field contact policy");
     static_assert(fields_per_body <= 255, "gimlet::solver: a partition may have at most 255 fields per body");
 
-private:
+protected:
     using particle_ref = gimlet::particle_ref<store_type>;
 
+    /// Build the particles of a scene (gimlet::solver's constructor). `friction` is the contact
+    /// law's Coulomb coefficient, checked where the options are (none for a policy that is not
+    /// a contact::Law).
+    solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
+                std::optional<double> friction);
+
 public:
-
-    /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
-    /// the grid, overlapping bodies or a body with no particles.
-    /// \param contact the contact policy's parameters (e.g. friction).
-    /// \param partition the partition's parameters (multi_field::Partition).
-    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{},
-                    const Part& partition = Part{})
-        : options_(options), grid_(sc.grid(), Sh::stencil), contact_(contact), partition_(partition) {
-        options_.validate();
-        require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
-        // USF strains with the start-of-step velocities, and a one-sided wall decided there and
-        // again after the forces would work on other velocities than the strain saw: the bar of
-        // tests/core/test_wall.cpp gained 8 % energy. Refused until the wall decides on USF's
-        // trial velocities, as contact does.
-        for (int d = 0; d < dim; ++d)
-            if (sc.grid().bc[d] == boundary::wall && options_.scheme == update_scheme::usf)
-                throw invalid_parameter("update scheme with a one-sided wall (boundary::wall) along " +
-                                            std::string(detail::axis_name(d)),
-                                        "usf", "musl or usl (USF with a one-sided wall creates energy)");
-        if constexpr (contact::Law<C>) {
-            const double mu = contact::friction_of(contact_);
-            require(mu >= 0.0, "contact law friction() (Coulomb coefficient mu)", mu, ">= 0 (infinity: no slip)");
-        }
-        for (const auto& b : sc.bodies()) materials_.push_back(b.material);
-        detail::seed_particles(sc, grid_, particles_);
-        real heaviest = 0;
-        for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
-        mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
-        if (options_.volume_filter && !has_reference_isentrope)
-            throw invalid_parameter("volume_filter", "true",
-                                    "false for this material: the filter moves each particle's energy along the reference "
-                                    "isentrope, which its thermal policy does not provide (reference_energy(J); "
-                                    "thermal::isentrope_temperature does)");
-        check_light_possible();
-        // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
-        // them; a single-field policy keeps one.
-        const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
-        // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp):
-        // refused, before the nodal arrays are allocated, on a grid with more entries.
-        const std::size_t entries_wanted = grid_.size() * fields;
-        if (options_.consistent_mass_iterations > 0 && entries_wanted > std::size_t(UINT32_MAX))
-            throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(entries_wanted) +
-                                        " node entries, fields x nodes)",
-                                    std::to_string(options_.consistent_mass_iterations),
-                                    "0 on a grid of more than 4294967295 node entries");
-        if constexpr (multi_field) {
-            grid_.set_field_count(fields);
-            exchange_.allocate(grid_.entries());
-        }
-        // Which components of a node's force the walls leave free (1) or take (0): the projection
-        // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
-        wall_free_.assign(grid_.entries(), vector::Ones());
-        grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
-        slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
-        if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
-            compute_stencils();
-            slabs_.bucket();
-            auto view = partition_view<store_type>();
-            partition_.initialize(view);
-        }
-    }
-
-    /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
-    real step() {
-        check_pending();  // a bad value set between steps is blamed on its particle, not on dt
-        return step(stable_time_step());
-    }
-
-    /// Advance one step of the given size (s). Throws numerical_error if the run breaks down.
-    real step(real dt) {
-        require(std::isfinite(double(dt)) && dt > 0, "time step dt (s)", double(dt), "finite and > 0");
-        advance(dt);
-        return dt;
-    }
-
-    /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/):
-    /// read-only observers (every_time, every_steps) and writable hooks (between_steps).
-    template <class... Observers>
-    void run_until(real t_end, Observers&... observers) {
-        require(std::isfinite(double(t_end)) && t_end >= time_, "end time (s)", double(t_end),
-                "finite and >= the current time " + detail::to_text(double(time_)));
-        check_pending();
-        (observers.maybe_call(*this), ...);
-        while (time_ < t_end) {
-            check_pending();  // what a hook (diagnostics::between_steps) changed, before dt reads it
-            const real dt = std::min(stable_time_step(), t_end - time_);
-            advance(dt);
-            if (t_end - time_ < real(1e-12) * t_end) time_ = t_end;  // no sliver step at the end
-            (observers.maybe_call(*this), ...);
-        }
-    }
-
     /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
     /// (docs/physics.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
     /// artificial viscosity acts (viscosity::Viscosity).
-    [[nodiscard]] real stable_time_step() const {
-        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-        real fastest = 0;
-        // The guards met on the way (health_events), counted once the step is taken.
-        std::uint64_t n0 = 0, n1 = 0, n2 = 0;
-        std::ptrdiff_t f0 = n, f1 = n, f2 = n;
-        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
-        GIMLET_OMP(parallel reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(shares.team()))
-        for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) {
-                const auto p = particles_[static_cast<std::size_t>(i)];
-                unsigned guards = 0;
-                real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
-                if (guards != 0) {
-                    if (guards & eos::guard::compression_capped) ++n0, f0 = std::min(f0, i);
-                    if (guards & eos::guard::negative_modulus) ++n1, f1 = std::min(f1, i);
-                    if (guards & eos::guard::no_wave_speed) ++n2, f2 = std::min(f2, i);
-                }
-                if constexpr (M::viscosity_type::enabled)
-                    c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
-                fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
-            }
-        pending_health_ = {steps_, true, {n0, n1, n2}, {f0, f1, f2}};
-        real dt = real(options_.max_time_step);
-        if (fastest > 0) dt = std::min(dt, real(options_.cfl) * grid_.cell() / fastest);
-        return dt;
-    }
+    [[nodiscard]] real stable_time_step() const;
 
     /// Longitudinal wave speed of particle p: sqrt((K + 4G/3) / rho).
     template <class P>
@@ -227,8 +116,6 @@ public:
     [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
-    /// The contact policy, with whatever it counted (contact::Counting).
-    [[nodiscard]] const C& contact() const noexcept { return contact_; }
     /// The partition of bodies into velocity fields (multi_field::Partition).
     [[nodiscard]] const Part& partition() const noexcept { return partition_; }
     [[nodiscard]] real time() const noexcept { return time_; }
@@ -251,7 +138,7 @@ public:
     /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
     [[nodiscard]] const health_events& health() const noexcept { return health_; }
 
-private:
+protected:
     using stencil_type = detail::stencil<S, Sh::stencil>;
     // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
     // thread a fixed share, the same in every loop over the same items, and a thread done early
@@ -349,7 +236,13 @@ private:
         }
     };
 
-    void advance(real dt) {
+    // One step of the scheme. `law` holds the contact policy's part of it, called only with
+    // multi-field contact: law.resolve(pass), the policy's correction at the shared nodes, and
+    // law.hook(), its per-particle hook after the step's last contact pass. gimlet::solver
+    // passes its own (solver::law_passes), so the rest of the step is compiled once for every
+    // law.
+    template <class Law>
+    void advance(real dt, Law&& law) {
         phase_clock lap;
         // The consistent mass's entry list serves this step only, however it ends.
         struct unlist {
@@ -358,9 +251,9 @@ private:
         } const step_lists{cm_listed_};
         begin_step(dt, lap);
         switch (options_.scheme) {
-            case update_scheme::musl: musl_step(dt, lap); break;
-            case update_scheme::usl: usl_step(dt, lap); break;
-            case update_scheme::usf: usf_step(dt, lap); break;
+            case update_scheme::musl: musl_step(dt, lap, law); break;
+            case update_scheme::usl: usl_step(dt, lap, law); break;
+            case update_scheme::usf: usf_step(dt, lap, law); break;
         }
         // Reached only when the step completes: a step that stopped part-way may have left
         // values in the later field slots, which the next step then sweeps.
@@ -402,46 +295,50 @@ private:
 
     // What MUSL and USL do first: P2G of mass, momentum and forces, the grid momentum update,
     // and the contact pass that decides where contact acts in this step.
-    void grid_update_and_contact(real dt, phase_clock& lap) {
-        scatter<true>();
+    template <class Law>
+    void grid_update_and_contact(real dt, phase_clock& lap, Law& law) {
+        scatter_all();
         find_light_particles();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
         update_grid_momentum(dt, true);
         lap(timings_.grid_update);
-        if constexpr (multi_field) resolve_contact(multi_field::pass::decide);
+        if constexpr (multi_field) law.resolve(multi_field::pass::decide);
         lap(timings_.contact);
     }
 
     // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
     // re-mapped to the grid, contact again (keeping the grid update's pairs), and the stress
     // from the re-mapped velocities.
-    void musl_step(real dt, phase_clock& lap) {
-        grid_update_and_contact(dt, lap);
+    template <class Law>
+    void musl_step(real dt, phase_clock& lap, Law& law) {
+        grid_update_and_contact(dt, lap, law);
         grid_to_particles(dt, true);  // with the re-map's scatter (docs/physics.md section 1, step 4)
         nodal_velocity(grid_.velocity);
         grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
         lap(timings_.grid_to_particle);
-        if constexpr (multi_field) resolve_contact(multi_field::pass::remap);
+        if constexpr (multi_field) law.resolve(multi_field::pass::remap);
         lap(timings_.contact);
-        end_step(dt, true, lap);
+        end_step(dt, true, lap, law);
     }
 
     // USL: P2G, grid update, contact, G2P, and the stress from the updated grid velocities.
-    void usl_step(real dt, phase_clock& lap) {
-        grid_update_and_contact(dt, lap);
+    template <class Law>
+    void usl_step(real dt, phase_clock& lap, Law& law) {
+        grid_update_and_contact(dt, lap, law);
         grid_to_particles(dt, false);
         lap(timings_.grid_to_particle);
-        end_step(dt, true, lap);
+        end_step(dt, true, lap, law);
     }
 
     // USF: P2G of mass and momentum, the stress from the start-of-step velocities, then its
     // forces, grid update, contact and G2P.
-    void usf_step(real dt, phase_clock& lap) {
+    template <class Law>
+    void usf_step(real dt, phase_clock& lap, Law& law) {
         // With contact it also maps the forces of the current stress: they decide where contact
         // acts in this step (multi_field::pass::trial).
-        if constexpr (multi_field) scatter<true>();
-        else scatter<false>();
+        if constexpr (multi_field) scatter_all();
+        else scatter_mass_momentum();
         find_light_particles();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
@@ -452,7 +349,7 @@ private:
         // The stress sees the same contact as the momentum update, or it would strain the
         // bodies through each other: this pass decides where contact acts in this step.
         if constexpr (multi_field) {
-            resolve_contact(multi_field::pass::trial);
+            law.resolve(multi_field::pass::trial);
             std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
         }
         lap(timings_.contact);
@@ -469,17 +366,18 @@ private:
         // engaging one the stress saw free, makes the forces work on other velocities than the
         // ones that strained the material (an energy source: Bardenhagen contact from a gap
         // rebounded with 1.8x the energy it came in with).
-        if constexpr (multi_field) resolve_contact(multi_field::pass::keep);
+        if constexpr (multi_field) law.resolve(multi_field::pass::keep);
         lap(timings_.contact);
         grid_to_particles(dt, false);
         lap(timings_.grid_to_particle);
-        end_step(dt, false, lap);
+        end_step(dt, false, lap, law);
     }
 
     // What every scheme does last: the contact policy's particle hook, and the particle pass
     // that updates the material (MUSL, USL) and checks every particle.
-    void end_step(real dt, bool update_materials, phase_clock& lap) {
-        if constexpr (multi_field) contact_hook();
+    template <class Law>
+    void end_step(real dt, bool update_materials, phase_clock& lap, Law& law) {
+        if constexpr (multi_field) law.hook();
         if (update_materials) filter_volumes();
         if (update_materials && options_.volumetric_average) average_volumetric_rates(grid_.velocity);
         finish_step(dt, update_materials);
@@ -524,6 +422,10 @@ private:
     // and the damping transfer
     template <bool Forces>
     void scatter();
+    // The scatter's two forms as members that are not templates, so that an explicit
+    // instantiation of the core compiles them (the step that calls them is a template).
+    void scatter_all() { scatter<true>(); }
+    void scatter_mass_momentum() { scatter<false>(); }
     void map_forces();
     void nodal_velocity(std::vector<vector>& out);
     void clear_grid();
@@ -589,12 +491,12 @@ private:
 
     // What a partition's hooks see (multi_field::partition_view).
     struct slab_caller {
-        solver* self;
+        solver_core* self;
         template <class F>
         void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
     };
     struct index_caller {
-        solver* self;
+        solver_core* self;
         template <class F>
         void operator()(std::size_t count, F&& f) const {
             const auto n = static_cast<std::ptrdiff_t>(count);
@@ -615,11 +517,10 @@ private:
     // The partition's side of every particle at every node of its stencil, from the
     // start-of-step state: the transfers of the whole step use them (entries).
     //
-    // This member and resolve_contact compile only for a partition of several fields or a
-    // multi-field contact, and are called only under `if constexpr`. They are templates because an
-    // explicit instantiation of the solver (docs/performance.md, "Memory, the largest scene,
-    // compile time") instantiates every member that is not one: C++20 would skip a member whose
-    // `requires` fails, clang 14 does not.
+    // This member compiles only for a partition of several fields, and is called only under
+    // `if constexpr`. It is a template because an explicit instantiation of the core
+    // (docs/performance.md, "Memory, the largest scene, compile time") instantiates every member
+    // that is not one: C++20 would skip a member whose `requires` fails, clang 14 does not.
     template <int = 0>
     void choose_fields() {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
@@ -653,25 +554,6 @@ private:
                      std::to_string(fields_per_body) + ") at a node of its stencil");
     }
 
-    template <int = 0>
-    void resolve_contact(multi_field::pass pass) { exchange_.resolve(pass, grid_, contact_, dt_, mass_cutoff_); }
-
-    // A contact policy's per-particle hook (contact::ParticleHook), after the step's last
-    // contact pass.
-    void contact_hook() {
-        if constexpr (multi_field && contact::ParticleHook<C, particle_ref, S>) {
-            const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-            detail::thread_shares shares(n, threads(), n >= parallel_threshold);
-            GIMLET_OMP(parallel num_threads(shares.team()))
-            for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto i = static_cast<std::size_t>(k);
-                    const contact::particle_contact<S> info = exchange_.contact_of(entries(i), stencils_[i], grid_.size());
-                    contact_.after_contact(particles_[i], info);
-                }
-        }
-    }
-
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
         pending_health_.commit(health_, steps_, [&](std::size_t i) {
@@ -691,20 +573,7 @@ private:
 
     // Stop on non-finite values, inverted particles or particles off the grid; report the
     // lowest-numbered offender so the message does not depend on the thread count.
-    void check_particles() {
-        const auto n = static_cast<std::ptrdiff_t>(particles_.size());
-        auto& x = particles_.template column<fields::position>();
-        std::ptrdiff_t first_bad = n;
-        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
-        GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
-        for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                const auto i = static_cast<std::size_t>(k);
-                grid_.wrap(x[i]);
-                if (!problem(i).empty()) first_bad = std::min(first_bad, k);
-            }
-        if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
-    }
+    void check_particles();  // below the class
 
     [[nodiscard]] bool healthy(std::size_t i) const { return detail::particle_healthy(particles_[i], grid_); }
     [[nodiscard]] std::string problem(std::size_t i) const { return detail::particle_problem(particles_[i], grid_); }
@@ -729,7 +598,6 @@ private:
     // and V at the forces' time.
     std::vector<real> cell_rate_, cell_volume_, cell_stress_, cell_stress_volume_;
     bool state_touched_ = true;  // the scene's particles are checked before the first step
-    C contact_;
     Part partition_;
     // Per particle and stencil node, the side of its body the partition chose this step
     // (fields_per_body > 1 only).
@@ -784,10 +652,234 @@ private:
     // change of e_s.
     std::vector<real> vf_first_, vf_value_, vf_product_, vf_mass_, vf_particle_, vf_heavy_;
     std::vector<double> vf_es_change_;
-    multi_field::exchange<S, C> exchange_;  // multi-field contact only (empty otherwise)
+    multi_field::exchange<S> exchange_;  // multi-field contact only (empty otherwise)
     real time_ = 0;
     std::uint64_t steps_ = 0;
 };
+
+/// The explicit GIMP/MPM solver (docs/physics.md section 1).
+///
+/// \tparam S  the space (dimension 2 = plane strain, or 3; float or double).
+/// \tparam Sh the shape-function policy (shape::Shape).
+/// \tparam M  the material bundle every body uses (gimlet::material<...>).
+/// \tparam C  the contact policy (contact::Contact).
+/// \tparam ExtraFields fields the user wants stored besides the policies' (their own tags for
+///         observers, or fields::external_acceleration for a per-particle body force).
+/// \tparam Part with multi-field contact, how each body is divided among velocity fields at the
+///         nodes (multi_field::Partition; default one field per body).
+///
+/// The particle store holds exactly the union of the fields the policies declare; a policy
+/// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
+/// All but the contact policy's part of a step is gimlet::solver_core, which solvers that differ
+/// only in their law share.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+class solver : public solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part> {
+    using core = solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part>;
+
+public:
+    using typename core::real;
+    using contact_type = C;
+    using core_type = core;
+    // A policy's optional members in a form the solver would skip (an after_contact that is not
+    // const, say) stop the build with the checker's sentence instead.
+    static_assert(contact::check<C>());
+
+    /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
+    /// the grid, overlapping bodies or a body with no particles.
+    /// \param contact the contact policy's parameters (e.g. friction).
+    /// \param partition the partition's parameters (multi_field::Partition).
+    explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{},
+                    const Part& partition = Part{})
+        : core(sc, options, partition, friction(contact)), contact_(contact) {}
+
+    /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
+    real step() {
+        this->check_pending();  // a bad value set between steps is blamed on its particle, not on dt
+        return step(this->stable_time_step());
+    }
+
+    /// Advance one step of the given size (s). Throws numerical_error if the run breaks down.
+    real step(real dt) {
+        require(std::isfinite(double(dt)) && dt > 0, "time step dt (s)", double(dt), "finite and > 0");
+        advance(dt);
+        return dt;
+    }
+
+    /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/):
+    /// read-only observers (every_time, every_steps) and writable hooks (between_steps).
+    template <class... Observers>
+    void run_until(real t_end, Observers&... observers) {
+        require(std::isfinite(double(t_end)) && t_end >= this->time_, "end time (s)", double(t_end),
+                "finite and >= the current time " + detail::to_text(double(this->time_)));
+        this->check_pending();
+        (observers.maybe_call(*this), ...);
+        while (this->time_ < t_end) {
+            this->check_pending();  // what a hook (diagnostics::between_steps) changed, before dt reads it
+            const real dt = std::min(this->stable_time_step(), t_end - this->time_);
+            advance(dt);
+            if (t_end - this->time_ < real(1e-12) * t_end) this->time_ = t_end;  // no sliver step at the end
+            (observers.maybe_call(*this), ...);
+        }
+    }
+
+    /// The contact policy, with whatever it counted (contact::Counting).
+    [[nodiscard]] const C& contact() const noexcept { return contact_; }
+
+private:
+    using typename core::particle_ref;
+
+    static std::optional<double> friction(const C& contact) {
+        if constexpr (contact::Law<C>) return contact::friction_of(contact);
+        else return (void)contact, std::nullopt;
+    }
+
+    // The step, with the contact policy's part of it (solver_core::advance). Not a template, so
+    // that an explicit instantiation of the solver compiles the step; defined below the class.
+    void advance(real dt);
+
+    struct law_passes {
+        solver& self;
+        // At every node several fields share, the policy's correction (multi_field::exchange).
+        // (An explicit instantiation of the solver compiles these two members for every policy:
+        // hence the guards, although the step calls them only with multi-field contact.)
+        void resolve(multi_field::pass pass) {
+            if constexpr (C::multi_field)
+                self.exchange_.resolve(pass, self.grid_, self.contact_, self.dt_, self.mass_cutoff_);
+            else (void)pass;
+        }
+        // A contact policy's per-particle hook (contact::ParticleHook), after the step's last
+        // contact pass.
+        void hook() {
+            if constexpr (C::multi_field && contact::ParticleHook<C, particle_ref, S>) {
+                const auto n = static_cast<std::ptrdiff_t>(self.particles_.size());
+                detail::thread_shares shares(n, self.threads(), n >= core::parallel_threshold);
+                GIMLET_OMP(parallel num_threads(shares.team()))
+                for (auto claimed = shares.start(); shares.claim(claimed);)
+                    for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                        const auto i = static_cast<std::size_t>(k);
+                        const contact::particle_contact<S> info =
+                            self.exchange_.contact_of(self.entries(i), self.stencils_[i], self.grid_.size());
+                        self.contact_.after_contact(self.particles_[i], info);
+                    }
+            }
+        }
+    };
+
+    C contact_;
+};
+
+// Members defined outside their class: not inline, so that an `extern template` declaration of
+// the solver or its core keeps them, and the step they lead to, out of a unit that only
+// constructs and runs it (docs/performance.md, "Memory, the largest scene, compile time").
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<S, M>& sc,
+                                                             const solver_options<S>& options, const Part& partition,
+                                                             std::optional<double> friction)
+    : options_(options), grid_(sc.grid(), Sh::stencil), partition_(partition) {
+    options_.validate();
+    require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
+    // USF strains with the start-of-step velocities, and a one-sided wall decided there and
+    // again after the forces would work on other velocities than the strain saw: the bar of
+    // tests/core/test_wall.cpp gained 8 % energy. Refused until the wall decides on USF's
+    // trial velocities, as contact does.
+    for (int d = 0; d < dim; ++d)
+        if (sc.grid().bc[d] == boundary::wall && options_.scheme == update_scheme::usf)
+            throw invalid_parameter("update scheme with a one-sided wall (boundary::wall) along " +
+                                        std::string(detail::axis_name(d)),
+                                    "usf", "musl or usl (USF with a one-sided wall creates energy)");
+    if (friction)
+        require(*friction >= 0.0, "contact law friction() (Coulomb coefficient mu)", *friction,
+                ">= 0 (infinity: no slip)");
+    for (const auto& b : sc.bodies()) materials_.push_back(b.material);
+    detail::seed_particles(sc, grid_, particles_);
+    real heaviest = 0;
+    for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
+    mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+    if (options_.volume_filter && !has_reference_isentrope)
+        throw invalid_parameter("volume_filter", "true",
+                                "false for this material: the filter moves each particle's energy along the reference "
+                                "isentrope, which its thermal policy does not provide (reference_energy(J); "
+                                "thermal::isentrope_temperature does)");
+    check_light_possible();
+    // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
+    // them; a single-field policy keeps one.
+    const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
+    // The consistent mass lists each particle's node entries in 32 bits (consistent_mass.hpp):
+    // refused, before the nodal arrays are allocated, on a grid with more entries.
+    const std::size_t entries_wanted = grid_.size() * fields;
+    if (options_.consistent_mass_iterations > 0 && entries_wanted > std::size_t(UINT32_MAX))
+        throw invalid_parameter("consistent_mass_iterations (with a grid of " + std::to_string(entries_wanted) +
+                                    " node entries, fields x nodes)",
+                                std::to_string(options_.consistent_mass_iterations),
+                                "0 on a grid of more than 4294967295 node entries");
+    if constexpr (multi_field) {
+        grid_.set_field_count(fields);
+        exchange_.allocate(grid_.entries());
+    }
+    // Which components of a node's force the walls leave free (1) or take (0): the projection
+    // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
+    wall_free_.assign(grid_.entries(), vector::Ones());
+    grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
+    slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
+    if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
+        compute_stencils();
+        slabs_.bucket();
+        auto view = partition_view<store_type>();
+        partition_.initialize(view);
+    }
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::stable_time_step() const -> real {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    real fastest = 0;
+    // The guards met on the way (health_events), counted once the step is taken.
+    std::uint64_t n0 = 0, n1 = 0, n2 = 0;
+    std::ptrdiff_t f0 = n, f1 = n, f2 = n;
+    detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel reduction(max : fastest) reduction(+ : n0, n1, n2) reduction(min : f0, f1, f2) num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) {
+            const auto p = particles_[static_cast<std::size_t>(i)];
+            unsigned guards = 0;
+            real c = longitudinal_wave_speed(p, materials_[p.template get<fields::body>()], guards);
+            if (guards != 0) {
+                if (guards & eos::guard::compression_capped) ++n0, f0 = std::min(f0, i);
+                if (guards & eos::guard::negative_modulus) ++n1, f1 = std::min(f1, i);
+                if (guards & eos::guard::no_wave_speed) ++n2, f2 = std::min(f2, i);
+            }
+            if constexpr (M::viscosity_type::enabled)
+                c = materials_[p.template get<fields::body>()].viscosity.signal_speed(c, grid_.cell(), p);
+            fastest = std::max(fastest, c + p.template get<fields::velocity>().norm());
+        }
+    pending_health_ = {steps_, true, {n0, n1, n2}, {f0, f1, f2}};
+    real dt = real(options_.max_time_step);
+    if (fastest > 0) dt = std::min(dt, real(options_.cfl) * grid_.cell() / fastest);
+    return dt;
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::check_particles() {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    auto& x = particles_.template column<fields::position>();
+    std::ptrdiff_t first_bad = n;
+    detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            grid_.wrap(x[i]);
+            if (!problem(i).empty()) first_bad = std::min(first_bad, k);
+        }
+    if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+}
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+void solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt) {
+    core::advance(dt, law_passes{*this});
+}
 
 }  // namespace gimlet
 

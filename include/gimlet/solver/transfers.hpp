@@ -18,9 +18,9 @@ namespace gimlet {
 
 // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <bool Forces>
-void solver<S, Sh, M, C, ExtraFields, Part>::scatter() {
+void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
     const auto& m = particles_.template column<fields::mass>();
     const auto& v = particles_.template column<fields::velocity>();
     [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
@@ -58,8 +58,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::scatter() {
 
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
 // stress update.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::map_forces() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
     const auto& m = particles_.template column<fields::mass>();
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
@@ -79,8 +79,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::map_forces() {
 
 // v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
 // (docs/physics.md section 1, step 2).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>& out) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::nodal_velocity(std::vector<vector>& out) {
     for_each_swept_entry([&](std::size_t i) {
         out[i] = grid_.mass[i] > 0 ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
     });
@@ -89,24 +89,24 @@ void solver<S, Sh, M, C, ExtraFields, Part>::nodal_velocity(std::vector<vector>&
 // The nodal arrays of the swept field slots are cleared every step (the others are empty
 // already: swept_fields_); on a large grid that is memory-bound work a single thread would do
 // while the others wait, so it is split between the threads.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::clear_grid() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::clear_grid() {
     for_each_swept_entry([&](std::size_t e) { grid_.clear_entry(e); });
 }
 
 // `out` holds one value per grid entry; the slots not swept this step hold `value` already
 // (the callers fill with zero, and nothing writes there while a slot is not swept).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
     assert(out.size() == grid_.entries());
     for_each_swept_entry([&](std::size_t e) { out[e] = value; });
 }
 
 // All the entries, or where a body's later field slots are not swept (swept_fields_),
 // its first slot's: runs of up to `run` entries, handed to the threads in a fixed split.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <class F>
-void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
+void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f) {
     const std::size_t nodes = grid_.size(), swept = swept_fields_;
     if (swept == fields_per_body) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
@@ -136,8 +136,8 @@ void solver<S, Sh, M, C, ExtraFields, Part>::for_each_swept_entry(F&& f) {
 // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
 // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
 // particles that exerted it (grid_to_particles).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
     consistent_mass_forces();  // solver_options::consistent_mass_iterations; nothing at 0
     for_each_swept_entry([&](std::size_t i) {
         const real mi = grid_.mass[i];
@@ -181,14 +181,14 @@ void solver<S, Sh, M, C, ExtraFields, Part>::update_grid_momentum(real dt, bool 
 
 // Whether node entry e, with particle weight w and gradient g, is a light node of the
 // particle's (a stencil node it neither weighs nor pushes is not).
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-bool solver<S, Sh, M, C, ExtraFields, Part>::on_light_node(std::size_t e, real w, const vector& g) const {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+bool solver_core<S, Sh, M, Fields, MultiField, Part>::on_light_node(std::size_t e, real w, const vector& g) const {
     return !(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero());
 }
 
 // dt f_ip / m_p summed over particle i's light nodes, as far as the walls leave it free.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::light_node_change(std::size_t i, real dt) const -> vector {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_node_change(std::size_t i, real dt) const -> vector {
     const auto& m = particles_.template column<fields::mass>();
     const matrix vs = force_stress(i);
     vector mb = m[i] * options_.body_force.template cast<real>();
@@ -208,8 +208,8 @@ auto solver<S, Sh, M, C, ExtraFields, Part>::light_node_change(std::size_t i, re
 // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
 // section 1, step 4): the gather reads grid velocities only and the scatter writes grid
 // momenta only.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool remap) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles(real dt, bool remap) {
     // Particles far lighter than their neighbours first (light_particles.hpp): they take their
     // velocities here, and the others take back the momentum they changed below.
     // The pass is compiled twice: a scene without light particles runs the plain one.
@@ -217,9 +217,9 @@ void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles(real dt, bool rem
     else grid_to_particles_pass<true>(dt, remap);
 }
 
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <bool Lights>
-void solver<S, Sh, M, C, ExtraFields, Part>::grid_to_particles_pass(real dt, bool remap) {
+void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(real dt, bool remap) {
     auto& x = particles_.template column<fields::position>();
     auto& v = particles_.template column<fields::velocity>();
     auto& energy = particles_.template column<fields::specific_internal_energy>();

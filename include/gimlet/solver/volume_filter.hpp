@@ -50,8 +50,8 @@
 
 namespace gimlet {
 
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::filter_volumes() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::filter_volumes() {
     if constexpr (has_reference_isentrope) {
         if (!options_.volume_filter) return;
         const int iterations = options_.consistent_mass_iterations;  // >= 1 (solver_options::validate)
