@@ -52,15 +52,17 @@ import sys
 import tempfile
 
 # solver::timings()' phases, in its order, with the names of the solver members (and the
-# policies' hooks) that run in each (include/gimlet/solver/solver.hpp, begin_step and musl_step).
+# policies' hooks) that run in each (include/gimlet/solver/solver.hpp, begin_step and musl_step;
+# the contact policy's part of the step is gimlet::solver's law_passes).
 PHASES = [
-    ("P2G", r"compute_stencils?\b|::scatter\b|slab_schedule::bucket\b|\bbucket\(|::prepare\(|choose_fields|"
+    ("P2G", r"compute_stencils?\b|::scatter(_all|_for_usf)?\b|begin_step|slab_schedule::bucket\b|\bbucket\(|"
+            r"::prepare\(|choose_fields|"
             r"clear_grid|find_light_particles|find_shared_nodes|average_mean_stress|self_contact::initialize"),
     ("grid", r"update_grid_momentum|consistent_mass"),
-    ("contact", r"resolve_contact|exchange::resolve\b|multi_field::correct\b"),
+    ("contact", r"law_passes::resolve\b|exchange::resolve\b|multi_field::correct\b"),
     ("G2P", r"grid_to_particles|nodal_velocity|apply_walls"),
     ("material", r"finish_step|material_pass|update_material_point|update_material_pair|velocity_gradient|"
-                 r"filter_volumes|average_volumetric_rates|contact_hook|check_pending|count_health"),
+                 r"filter_volumes|average_volumetric_rates|law_passes::hook\b|check_pending|count_health"),
 ]
 SCENE_NAMES = {"reference": "reference (elastic)", "hmx": "HMX, the flagship's defaults"}
 
@@ -458,6 +460,11 @@ calls=1 0x50 0
         (phase_of("void gimlet::detail::slab_schedule<2>::for_each_kept<gimlet::multi_field::self_contact::"
                   "initialize<V>(V&)::{lambda(unsigned long)#1}>(unsigned char const*, bool, int, V&&) const"), "P2G"),
         (phase_of("void gimlet::multi_field::exchange::resolve<G>(G&)"), "contact"),
+        (phase_of("gimlet::solver<a, b>::law_passes::resolve(gimlet::multi_field::pass)"), "contact"),
+        (phase_of("gimlet::solver<a, b>::law_passes::hook() [clone ._omp_fn.0]"), "material"),
+        (phase_of("gimlet::solver_core<a, b>::scatter_all()"), "P2G"),
+        (phase_of("gimlet::solver_core<a, b>::scatter_for_usf()"), "P2G"),
+        (phase_of("gimlet::solver_core<a, b>::begin_step(double, gimlet::solver_core<a, b>::phase_clock&)"), "P2G"),
     ]
     bad += [(got, want) for got, want in checks if got != want]
     for b in bad:

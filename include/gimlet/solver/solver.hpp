@@ -50,6 +50,10 @@ template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList Ex
 using solver_fields_t = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields,
                                      typename C::required_fields, typename Part::required_fields, ExtraFields>;
 
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+class solver;
+
 /// Everything of gimlet::solver but its contact policy: the particles, the grid, the passes
 /// of a step and the public members that read them. Solvers that differ only in their contact
 /// law (with the same fields) share it, so a program compiles this part once for all its laws:
@@ -85,7 +89,12 @@ public:
                   "gimlet::solver: a partition with several fields per body needs a multi-field contact policy");
     static_assert(fields_per_body <= 255, "gimlet::solver: a partition may have at most 255 fields per body");
 
-protected:
+private:
+    // Only gimlet::solver builds, copies, destroys and reaches into a core: what was private in
+    // the solver stays private, and a core is never a solver without its contact policy.
+    template <Space, shape::Shape, Material, contact::Contact, FieldList, multi_field::Partition>
+    friend class solver;
+
     using particle_ref = gimlet::particle_ref<store_type>;
 
     /// Build the particles of a scene (gimlet::solver's constructor). `friction` is the contact
@@ -93,6 +102,11 @@ protected:
     /// a contact::Law).
     solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
                 std::optional<double> friction);
+    solver_core(const solver_core&) = default;
+    solver_core(solver_core&&) = default;
+    solver_core& operator=(const solver_core&) = default;
+    solver_core& operator=(solver_core&&) = default;
+    ~solver_core();  // below the class, as the members the step reaches (extern template)
 
 public:
     /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
@@ -138,7 +152,7 @@ public:
     /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
     [[nodiscard]] const health_events& health() const noexcept { return health_; }
 
-protected:
+private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
     // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
     // thread a fixed share, the same in every loop over the same items, and a thread done early
@@ -262,36 +276,7 @@ protected:
 
     // What every scheme does first: the checks of what changed between steps, the weights at
     // x^n, the slabs of the scatter, an empty grid.
-    void begin_step(real dt, phase_clock& lap) {
-        check_pending();
-        count_health();
-        lap(timings_.material_update);  // where the checks are done in every other step
-        // The weights are recomputed from the positions every step, even though the previous
-        // step's last pass could have computed them: a caller may change positions through a
-        // reference to the store kept from an earlier particles() call, which no flag sees.
-        compute_stencils();
-        timings_.weights += lap(timings_.particle_to_grid);
-        if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
-        lap(timings_.sort);
-        slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
-        // Asked of any partition that has it, whatever its fields_per_body; the view is a const
-        // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
-        if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); }) {
-            const auto view = partition_view<const store_type>();
-            partition_.prepare(view);
-        }
-        if constexpr (fields_per_body > 1) {
-            split_now_ = true;
-            if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) split_now_ = partition_.splits();
-            swept_fields_ = split_now_ || !later_fields_empty_ ? fields_per_body : 1;
-            if (split_now_) later_fields_empty_ = false;  // this step writes there, even if it stops part-way
-            choose_fields();
-        }
-        timings_.slabs += lap(timings_.particle_to_grid);
-        dt_ = dt;
-        if (options_.volumetric_average) average_mean_stress();
-        clear_grid();
-    }
+    void begin_step(real dt, phase_clock& lap);  // below the class
 
     // What MUSL and USL do first: P2G of mass, momentum and forces, the grid momentum update,
     // and the contact pass that decides where contact acts in this step.
@@ -337,8 +322,7 @@ protected:
     void usf_step(real dt, phase_clock& lap, Law& law) {
         // With contact it also maps the forces of the current stress: they decide where contact
         // acts in this step (multi_field::pass::trial).
-        if constexpr (multi_field) scatter_all();
-        else scatter_mass_momentum();
+        scatter_for_usf();
         find_light_particles();
         if constexpr (multi_field) find_shared_nodes();
         lap(timings_.particle_to_grid);
@@ -422,10 +406,14 @@ protected:
     // and the damping transfer
     template <bool Forces>
     void scatter();
-    // The scatter's two forms as members that are not templates, so that an explicit
-    // instantiation of the core compiles them (the step that calls them is a template).
+    // The scatters the step calls, as members that are not templates, so that an explicit
+    // instantiation of the core compiles them (the step that calls them is a template): mass,
+    // momentum and forces; and USF's first, which maps the forces too only with contact.
     void scatter_all() { scatter<true>(); }
-    void scatter_mass_momentum() { scatter<false>(); }
+    void scatter_for_usf() {
+        if constexpr (multi_field) scatter<true>();
+        else scatter<false>();
+    }
     void map_forces();
     void nodal_velocity(std::vector<vector>& out);
     void clear_grid();
@@ -479,15 +467,7 @@ protected:
 
     // ---- multi-field contact (multi_field::exchange) --------------------------------------
 
-    void find_shared_nodes() {
-        exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
-                                    [&](std::size_t i) { return entries(i); },
-                                    [&](const std::vector<std::uint8_t>& rows, auto&& f) {
-                                        for_each_particle_by_slab_reaching(rows, f);
-                                    },
-                                    threads(),
-                                    std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
-    }
+    void find_shared_nodes();  // below the class
 
     // What a partition's hooks see (multi_field::partition_view).
     struct slab_caller {
@@ -672,8 +652,7 @@ protected:
 /// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
 /// All but the contact policy's part of a step is gimlet::solver_core, which solvers that differ
 /// only in their law share.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
-          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 class solver : public solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part> {
     using core = solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part>;
 
@@ -875,6 +854,52 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::check_particles() {
         }
     if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
 }
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::begin_step(real dt, phase_clock& lap) {
+    check_pending();
+    count_health();
+    lap(timings_.material_update);  // where the checks are done in every other step
+    // The weights are recomputed from the positions every step, even though the previous
+    // step's last pass could have computed them: a caller may change positions through a
+    // reference to the store kept from an earlier particles() call, which no flag sees.
+    compute_stencils();
+    timings_.weights += lap(timings_.particle_to_grid);
+    if (options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0) sort_by_cell();
+    lap(timings_.sort);
+    slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
+    // Asked of any partition that has it, whatever its fields_per_body; the view is a const
+    // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
+    if constexpr (requires(Part& p, const partition_view_type<const store_type>& v) { p.prepare(v); }) {
+        const auto view = partition_view<const store_type>();
+        partition_.prepare(view);
+    }
+    if constexpr (fields_per_body > 1) {
+        split_now_ = true;
+        if constexpr (requires(const Part& p) { { p.splits() } -> std::convertible_to<bool>; }) split_now_ = partition_.splits();
+        swept_fields_ = split_now_ || !later_fields_empty_ ? fields_per_body : 1;
+        if (split_now_) later_fields_empty_ = false;  // this step writes there, even if it stops part-way
+        choose_fields();
+    }
+    timings_.slabs += lap(timings_.particle_to_grid);
+    dt_ = dt;
+    if (options_.volumetric_average) average_mean_stress();
+    clear_grid();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
+    exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
+                                [&](std::size_t i) { return entries(i); },
+                                [&](const std::vector<std::uint8_t>& rows, auto&& f) {
+                                    for_each_particle_by_slab_reaching(rows, f);
+                                },
+                                threads(),
+                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+solver_core<S, Sh, M, Fields, MultiField, Part>::~solver_core() = default;
 
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt) {
