@@ -409,11 +409,10 @@ private:
     // The scatters the step calls, as members that are not templates, so that an explicit
     // instantiation of the core compiles them (the step that calls them is a template): mass,
     // momentum and forces; and USF's first, which maps the forces too only with contact.
-    void scatter_all() { scatter<true>(); }
-    void scatter_for_usf() {
-        if constexpr (multi_field) scatter<true>();
-        else scatter<false>();
-    }
+    // (Defined below the class: an inline member would compile its scatter in every unit that
+    // steps a solver of another law on a core declared `extern template`.)
+    void scatter_all();
+    void scatter_for_usf();
     void map_forces();
     void nodal_velocity(std::vector<vector>& out);
     void clear_grid();
@@ -900,6 +899,17 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 solver_core<S, Sh, M, Fields, MultiField, Part>::~solver_core() = default;
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_all() {
+    scatter<true>();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_for_usf() {
+    if constexpr (multi_field) scatter<true>();
+    else scatter<false>();
+}
 
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
 void solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt) {
