@@ -4,24 +4,39 @@
 
 tests/instantiations.hpp declares the shared solvers and their contact-independent cores
 (gimlet::solver_core) `extern template`, and tests/instantiations_*.cpp define them. The saving
-holds only while no family's unit compiles a shared core's members again, which it does for any
-member defined inside the class (an inline member is instantiated where it is called, `extern`
-or not) that the step reaches: the scatter, the shared-node search. This reads the objects'
-symbols (nm) and fails, naming them, if a family's object defines one of a shared core's members
-that are defined outside the class (read from the solver's headers: not inline, so `extern`
-keeps them out at any optimisation level; the constructor from a scene, the destructor, the
-passes) or that only those reach (the slab loops). The step's order (a template on the law: a
-unit's own laws need their own) and the small inline members are not checked.
+holds only while no family's unit compiles their members again. A unit does so for a member
+defined inside its class (an inline member is instantiated where it is called, `extern` or not),
+and for the member templates such a member reaches (`extern template` does not cover member
+templates: they stay out only because their callers do). So the members that the step, the
+constructor and the time step reach are defined outside their classes, and this checks it two
+ways:
+- in the headers: each member of REQUIRED is still defined outside its class (a member moved
+  back into its class fails here by name, whatever the compiler then emits);
+- in the objects (nm): no family's object defines a member of a shared core that is defined
+  outside the class (the headers' list: the passes, the destructor, the member templates), the
+  slab loops only those reach, a shared core's constructor from a scene, or a shared solver's
+  `advance`.
+The step's order (`advance<Law>` and the schemes' steps in the core: templates on the law, which
+a unit compiles for the laws of its own solvers) and the small inline members are not checked.
 
 usage: compiled_once.py NM SOLVER_HEADER_DIR INSTANTIATION_OBJECTS... -- FAMILY_OBJECTS...
 """
+import collections
 import pathlib
 import re
-import collections
 import subprocess
 import sys
 
 CORE = "gimlet::solver_core<"
+SOLVER = "gimlet::solver<"
+# What must stay defined outside its class (docs/performance.md, "Solvers that differ only in
+# their contact law share the rest"): the core's members that the step, the constructor and the
+# time step reach, and the solver's own step.
+REQUIRED_CORE = ["solver_core", "~solver_core", "begin_step", "scatter_all", "scatter_for_usf", "scatter",
+                 "find_shared_nodes", "stable_time_step", "check_particles", "grid_to_particles",
+                 "update_material_points", "finish_step", "consistent_mass_forces", "filter_volumes"]
+REQUIRED_SOLVER = ["advance"]
+SLAB_LOOPS = {"for_each_particle_by_slab", "for_each_particle_by_slab_reaching"}
 
 
 def defined_names(nm, obj):
@@ -34,69 +49,74 @@ def defined_names(nm, obj):
     return names
 
 
-def member_of_core(name):
-    """(core type, member) when `name` is a member function of a solver_core (a member
-    template's name starts with its return type), else None."""
-    i = name.find(CORE)
+def member_of(name, key):
+    """(type, member) when `name` is a member function of a class template named by `key`
+    (its type's template-id at the top level of the name: a member template's demangled name
+    starts with its return type, which may itself name the type), else None."""
+    found = None
+    i = name.find(key)
     while i >= 0:
         prefix = name[:i]
         if prefix.count("<") == prefix.count(">") and (not prefix or prefix.endswith(" ")):
-            break
-        i = name.find(CORE, i + 1)
-    if i < 0:
-        return None
-    depth, j = 1, i + len(CORE)
-    while j < len(name) and depth:
-        depth += {"<": 1, ">": -1}.get(name[j], 0)
-        j += 1
-    if not name.startswith("::", j):
-        return None
-    member = name[j + 2:].split("(")[0].split("<")[0]
-    return name[i:j], member
+            depth, j = 1, i + len(key)
+            while j < len(name) and depth:
+                depth += {"<": 1, ">": -1}.get(name[j], 0)
+                j += 1
+            if name.startswith("::", j):
+                member = re.split(r"[(<\[]", name[j + 2:], maxsplit=1)[0]
+                found = (name[i:j], member)  # the last one at the top level: the qualifier
+        i = name.find(key, i + 1)
+    return found
 
 
 def main(argv):
     nm, headers, rest = argv[1], argv[2], argv[3:]
-    out_of_class = set()
-    for header in pathlib.Path(headers).glob("*.hpp"):
-        out_of_class |= set(re.findall(r"solver_core<S, Sh, M, Fields, MultiField, Part>::(~?\w+)\(",
-                                       header.read_text()))
-    # The constructor is checked by its argument (a copy or a move is inline by design: a test may
-    # copy a solver); the slab loops are templates that only the passes call.
-    out_of_class.discard("solver_core")
-    watched = out_of_class | {"for_each_particle_by_slab", "for_each_particle_by_slab_reaching"}
-    if len(out_of_class) < 10:
-        print(f"compiled_once.py: found only {sorted(out_of_class)} defined outside the class in {headers}",
-              file=sys.stderr)
+    text = "".join(p.read_text() for p in sorted(pathlib.Path(headers).glob("*.hpp")))
+    out_of_class = set(re.findall(r"solver_core<S, Sh, M, Fields, MultiField, Part>::(~?\w+)\(", text))
+    solver_out_of_class = set(re.findall(r"solver<S, Sh, M, C, ExtraFields, Part>::(\w+)\(", text))
+    missing = [m for m in REQUIRED_CORE if m not in out_of_class] + \
+              [f"solver::{m}" for m in REQUIRED_SOLVER if m not in solver_out_of_class]
+    if missing:
+        print(f"compiled_once.py: no longer defined outside their classes in {headers}: {', '.join(missing)} "
+              "(an inline member is compiled again in every unit that calls it)", file=sys.stderr)
         return 1
+    # The constructor is checked by its argument (a copy or a move is inline by design: a test
+    # may copy a solver).
+    watched = (out_of_class - {"solver_core"}) | SLAB_LOOPS
     split = rest.index("--")
     instantiations, families = rest[:split], rest[split + 1:]
-    shared = set()
+    if not families:
+        print("compiled_once.py: no family objects given", file=sys.stderr)
+        return 1
+    shared_cores, shared_solvers = set(), set()
     for obj in instantiations:
         for name in defined_names(nm, obj):
-            found = member_of_core(name)
-            if found:
-                shared.add(found[0])
-    if not shared:
-        print("compiled_once.py: no solver_core defined in the instantiation objects", file=sys.stderr)
+            for key, into in ((CORE, shared_cores), (SOLVER, shared_solvers)):
+                found = member_of(name, key)
+                if found:
+                    into.add(found[0])
+    if not shared_cores or not shared_solvers:
+        print("compiled_once.py: no solver or solver_core defined in the instantiation objects", file=sys.stderr)
         return 1
     bad = 0
     for obj in families:
         members = collections.Counter()
         for name in defined_names(nm, obj):
-            found = member_of_core(name)
-            if not found or found[0] not in shared:
-                continue
-            if found[1] in watched:
-                members[found[1]] += 1
-            elif found[1] == "solver_core" and "gimlet::scene::scene<" in name:
-                members["solver_core (from a scene)"] += 1
+            core = member_of(name, CORE)
+            if core and core[0] in shared_cores:
+                if core[1] in watched:
+                    members[core[1]] += 1
+                elif core[1] == "solver_core" and "gimlet::scene::scene<" in name:
+                    members["solver_core (from a scene)"] += 1
+            solver = member_of(name, SOLVER)
+            if solver and solver[0] in shared_solvers and solver[1] in REQUIRED_SOLVER:
+                members[f"solver::{solver[1]}"] += 1
         if members:
             bad += 1
-            print(f"{obj}: defines members of a shared solver_core again: "
+            print(f"{obj}: defines members of a shared solver type again: "
                   + ", ".join(f"{m} ({n} symbols)" for m, n in sorted(members.items())), file=sys.stderr)
-    print(f"compiled_once.py: {len(shared)} shared cores, {len(watched)} members watched, "
-          f"{len(families)} family objects, "
+    print(f"compiled_once.py: {len(shared_cores)} shared cores, {len(shared_solvers)} shared solvers, "
+          f"{len(watched)} members watched, {len(families)} family objects, "
           f"{'none' if not bad else bad} compiling them again")
     return 1 if bad else 0
 
