@@ -13,6 +13,7 @@
 //   - the clock: a chain of dependent integer additions (x86-64 assembly), one per cycle, so
 //     that the per-phase table can give each phase's instructions per cycle; and the rate of
 //     independent register additions (a loop the integer units bound);
+//   - the level-1 data cache's ports: independent 16-byte loads, and stores, per ns;
 //   - streaming bandwidth: the triad a = b + s c over three arrays, at a working set the size
 //     of the HMX scene's particle data (22 MB: 64,000 particles x about 340 bytes of store and
 //     stencil) and at one far larger than the caches (400 MB); bytes counted as 3 x 8 per
@@ -188,6 +189,46 @@ double addition_rate([[maybe_unused]] long iterations) {
 #endif
 }
 
+// Memory accesses per ns that the level-1 data cache serves one thread, best of 5: 12
+// independent 16-byte loads (or stores) per iteration, one in each of the 12 lines of a 768-byte
+// block that stays in that cache, plus the loop's decrement and branch. A load's data goes
+// nowhere and a store writes the same registers again, so only the cache's ports bound them.
+// 0 where there is no x86-64 assembly.
+struct l1_rates {
+    double loads = 0, stores = 0;
+};
+l1_rates l1_access_rates([[maybe_unused]] long iterations) {
+    l1_rates r;
+#if defined(CEILINGS_X86_ASM)
+    alignas(64) double block[12 * 64 / 8] = {};  // 12 lines
+    double* p = block;
+    r.loads = best_rate(iterations, 12.0, [p](long n) {
+        asm volatile(
+            "1:\n\t"
+            "movapd (%1), %%xmm0\n\tmovapd 64(%1), %%xmm1\n\tmovapd 128(%1), %%xmm2\n\tmovapd 192(%1), %%xmm3\n\t"
+            "movapd 256(%1), %%xmm4\n\tmovapd 320(%1), %%xmm5\n\tmovapd 384(%1), %%xmm6\n\tmovapd 448(%1), %%xmm7\n\t"
+            "movapd 512(%1), %%xmm8\n\tmovapd 576(%1), %%xmm9\n\tmovapd 640(%1), %%xmm10\n\tmovapd 704(%1), %%xmm11\n\t"
+            "dec %0\n\tjnz 1b\n\t"
+            : "+r"(n)
+            : "r"(p)
+            : "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", "xmm8", "xmm9", "xmm10", "xmm11", "cc",
+              "memory");
+    });
+    r.stores = best_rate(iterations, 12.0, [p](long n) {
+        asm volatile(
+            "1:\n\t"
+            "movapd %%xmm0, (%1)\n\tmovapd %%xmm1, 64(%1)\n\tmovapd %%xmm2, 128(%1)\n\tmovapd %%xmm3, 192(%1)\n\t"
+            "movapd %%xmm4, 256(%1)\n\tmovapd %%xmm5, 320(%1)\n\tmovapd %%xmm6, 384(%1)\n\tmovapd %%xmm7, 448(%1)\n\t"
+            "movapd %%xmm8, 512(%1)\n\tmovapd %%xmm9, 576(%1)\n\tmovapd %%xmm10, 640(%1)\n\tmovapd %%xmm11, 704(%1)\n\t"
+            "dec %0\n\tjnz 1b\n\t"
+            : "+r"(n)
+            : "r"(p)
+            : "cc", "memory");
+    });
+#endif
+    return r;
+}
+
 // GB/s of the triad over three arrays of mb / 3 megabytes each on `threads` threads, best of 5.
 double triad(double mb, [[maybe_unused]] int threads, double seconds) {
     const auto n = std::size_t(mb * 1e6 / 3 / 8);
@@ -280,6 +321,9 @@ int main(int argc, char** argv) try {
                 sync.region, sync.barrier);
     std::printf("\nclock (a chain of dependent integer additions, one per cycle): %.2f GHz\n", clock_ghz(iterations / 4));
     std::printf("independent register additions: %.2f instructions per ns\n", addition_rate(iterations / 4));
+    const auto l1 = l1_access_rates(iterations / 4);
+    std::printf("level-1 data cache, one thread: 16-byte loads %.2f per ns, 16-byte stores %.2f per ns\n", l1.loads,
+                l1.stores);
     if (sink == 42.0) std::printf("\n");  // keeps the chains' results alive
     return 0;
 } catch (const std::exception& e) {

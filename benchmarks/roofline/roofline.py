@@ -10,7 +10,8 @@ it measures, per particle-update and per phase of solver::timings():
   work      the instructions the phase executes, counted by valgrind's callgrind (--dump-instr)
             and classified by disassembly (objdump -M intel): floating-point operations (add,
             subtract, multiply: one per lane; a fused multiply-add two), divisions and square
-            roots (per lane), the calls into libm by name, and the bytes the L3 or memory
+            roots (per lane), the calls into libm by name, the level-1 cache's loads and stores
+            (an operand in memory read, written, or both), and the bytes the L3 or memory
             delivers (the 64-byte lines of the read and write misses of callgrind's simulated
             caches, set to this machine's L1 data cache and L2; write-backs and prefetches not
             counted). A run of --short steps is subtracted from one of --long steps, so setting
@@ -20,13 +21,16 @@ and sets them against the machine's ceilings, which bench_ceilings measures just
 just after each scene's timed runs, their mean taken (a shared machine's speed drifts over
 minutes): the scalar and vector multiply-add throughput, the 22 MB triad, the cost of a
 division, a square root, pow and log, each at its throughput (one at a time, independent
-inputs), the clock and the rate of independent register additions.
+inputs), the clock, the rate of independent register additions and the level-1 cache's load
+and store rates.
 
 A phase's bound is the largest of its resources' times: flops at the vector ceiling (the vector
 width bench_ceilings was built for: SSE2 in the portable `bench` build), bytes at the 22 MB
 triad, and the division and root instructions one after another at their throughput (one
 divider; a packed division costs about what a scalar one does). The table also gives the bound
-with flops at the scalar ceiling (what code one particle at a time can reach), and the phase's
+with flops at the scalar ceiling (what code one particle at a time can reach), the time over
+the level-1 cache's ports' bound (the loads and the stores at their measured rates; a column of
+its own, as fewer loads were measured not to make a phase faster), and the phase's
 instructions per ns, per cycle (bench_ceilings' clock) and as a share of the rate of the
 independent additions measured beside it (a loop the integer units bound, not the most the core
 issues of a mix). Calls into libm count as their own instructions, flops and divisions included
@@ -206,6 +210,39 @@ def classify(mnemonic, operands):
     return flops, divs, roots
 
 
+# Level-1 data cache accesses of one execution (loads, stores), from the operands in Intel
+# syntax: an operand in brackets is read, or written where it is the destination of a move, or
+# both (a read-modify-write: `add QWORD PTR [rax],rdx`). push, call write the stack and pop, ret
+# read it; lea and nop name an address without touching it.
+STORE_ONLY_OPS = re.compile(r"^v?(mov\w*|set\w+|stos\w*)$")
+READ_ONLY_DESTINATION_OPS = re.compile(r"^(cmp|test|bt)$")
+NO_ACCESS_OPS = re.compile(r"^(lea|nop\w*|prefetch\w*|endbr64|clflush\w*)$")
+
+
+def memory_accesses(mnemonic, operands):
+    """(loads, stores) of one execution."""
+    if NO_ACCESS_OPS.match(mnemonic):
+        return 0, 0
+    if mnemonic == "push":
+        return ("[" in operands), 1
+    if mnemonic == "pop":
+        return 1, ("[" in operands)
+    if mnemonic.startswith("call"):
+        return ("[" in operands), 1
+    if mnemonic.startswith("ret"):
+        return 1, 0
+    if "[" not in operands:
+        return 0, 0
+    destination = operands.split(",")[0]
+    if "[" not in destination:
+        return 1, 0
+    if READ_ONLY_DESTINATION_OPS.match(mnemonic):
+        return 1, 0
+    if STORE_ONLY_OPS.match(mnemonic) and "," in operands:
+        return 0, 1
+    return 1, 1
+
+
 _disassembly = {}
 
 
@@ -259,6 +296,9 @@ def measure_work(events, self_counts, edges):
                 continue
             f, d, r = classify(*ins)
             t["flops"] += f * count
+            loads, stores = memory_accesses(*ins)
+            t["loads"] += loads * count
+            t["stores"] += stores * count
             t["divisions"] += d * count
             t["roots"] += r * count
             # The divider's time: a packed division costs about what a scalar one does.
@@ -360,11 +400,12 @@ def whole(x):
 
 
 def work_cells(w):
-    """The work columns of a row: instructions, flops, divisions and roots, libm calls, bytes."""
+    """The work columns of a row: instructions, flops, divisions and roots, libm calls, level-1
+    loads and stores, bytes."""
     calls = {k[5:]: v for k, v in w.items() if k.startswith("call ") and v >= 0.01}
     call_text = ", ".join(f"{v:.2f} {k}" for k, v in sorted(calls.items())) or "–"
     return (f"{whole(w['instructions'])} | {whole(w['flops'])} | {w['divisions']:.1f}, {w['roots']:.1f} | {call_text} "
-            f"| {whole(w['far bytes'])}")
+            f"| {whole(w['loads'])}, {whole(w['stores'])} | {whole(w['far bytes'])}")
 
 
 def timed(bench, scene, steps, cell, runs):
@@ -399,11 +440,14 @@ def ceilings(bench_ceilings, quick):
         sys.exit(f"roofline.py: {bench_ceilings} gave no usable one-thread ceilings:\n{text}")
     clock = re.search(r"clock .*: ([0-9.]+) GHz", text)
     adds = re.search(r"independent register additions: ([0-9.]+) instructions per ns", text)
+    l1 = re.search(r"16-byte loads ([0-9.]+) per ns, 16-byte stores ([0-9.]+) per ns", text)
     return {"scalar": float(row.group(1)), "vector": float(row.group(2)), "triad": float(row.group(3)),
             "division": float(calls["division"]), "root": float(calls["square root"]),
             "pow": float(calls["pow"]), "log": float(calls["log"]),
             "clock": float(clock.group(1)) if clock and float(clock.group(1)) > 0 else None,
-            "adds": float(adds.group(1)) if adds and float(adds.group(1)) > 0 else None}
+            "adds": float(adds.group(1)) if adds and float(adds.group(1)) > 0 else None,
+            "l1 loads": float(l1.group(1)) if l1 and float(l1.group(1)) > 0 else None,
+            "l1 stores": float(l1.group(2)) if l1 and float(l1.group(2)) > 0 else None}
 
 
 def self_test():
@@ -421,6 +465,24 @@ def self_test():
         (("addpd", "zmm0,zmm1"), (8, 0, 0)),
     ]
     bad = [(ins, classify(*ins), want) for ins, want in cases if classify(*ins) != want]
+    accesses = [
+        (("movsd", "xmm0,QWORD PTR [rax+0x8]"), (1, 0)),
+        (("movaps", "XMMWORD PTR [rdx],xmm1"), (0, 1)),
+        (("addpd", "xmm1,XMMWORD PTR [rdx]"), (1, 0)),
+        (("add", "QWORD PTR [rax],rdx"), (1, 1)),
+        (("cmp", "BYTE PTR [rdi],0x0"), (1, 0)),
+        (("comisd", "xmm1,QWORD PTR [rdi+0x470]"), (1, 0)),
+        (("lea", "r8,[r8+rax*8]"), (0, 0)),
+        (("nop", "WORD PTR cs:[rax+rax*1+0x0]"), (0, 0)),
+        (("push", "r15"), (0, 1)),
+        (("pop", "rbx"), (1, 0)),
+        (("call", "3ccb0 <f>"), (0, 1)),
+        (("call", "QWORD PTR [rip+0x2fe2]"), (1, 1)),
+        (("ret", ""), (1, 0)),
+        (("mulpd", "xmm0,xmm1"), (0, 0)),
+        (("vmovapd", "YMMWORD PTR [rsp+0x20],ymm3"), (0, 1)),
+    ]
+    bad += [(ins, memory_accesses(*ins), want) for ins, want in accesses if memory_accesses(*ins) != want]
     text = """version: 1
 positions: instr line
 events: Ir DLmr DLmw
@@ -469,7 +531,7 @@ calls=1 0x50 0
     bad += [(got, want) for got, want in checks if got != want]
     for b in bad:
         print("roofline.py self-test: mismatch", b, file=sys.stderr)
-    print("roofline.py self-test:", "failed" if bad else f"{len(cases) + len(checks)} checks pass")
+    print("roofline.py self-test:", "failed" if bad else f"{len(cases) + len(accesses) + len(checks)} checks pass")
     return 1 if bad else 0
 
 
@@ -498,8 +560,9 @@ def main():
     if not a.cell > 0:
         ap.error(f"--cell ({a.cell} mm) must be > 0")
     if a.work_only:
-        print("| scene | phase | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 |")
-        print("| --- | --- | --- | --- | --- | --- | --- |")
+        print("| scene | phase | instructions | flops | divisions, roots | libm calls | L1 loads, stores "
+              "| bytes from beyond L2 |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- |")
         with tempfile.TemporaryDirectory() as work:
             for scene in a.scenes.split(","):
                 _, table = work_per_update(a.bench, scene, a.cell, a.short, a.long, work)
@@ -510,10 +573,11 @@ def main():
     if a.ceilings is None:
         ap.error("the bench_ceilings binary is needed (or --work-only)")
     notes = []
-    print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | bytes from beyond L2 "
-          "| GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider | time / bound "
-          "| time / scalar-flops bound | instructions per ns (per cycle; share of the additions' rate) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| scene | phase | time (ns) | instructions | flops | divisions, roots | libm calls | L1 loads, stores "
+          "| bytes from beyond L2 | GFLOP/s (of scalar, SSE2) | GB/s (of triad) | bound (ns): SSE2 flops, bytes, divider "
+          "| time / bound | time / scalar-flops bound | time / L1 ports' bound "
+          "| instructions per ns (per cycle; share of the additions' rate) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     with tempfile.TemporaryDirectory() as work:
         for scene in a.scenes.split(","):
             before = ceilings(a.ceilings, a.quick)
@@ -526,7 +590,9 @@ def main():
                          f"and SSE2 {both('vector')} GFLOP/s, triad 22 MB {both('triad')} GB/s, division "
                          f"{both('division')} ns, root {both('root')} ns, pow {both('pow')} ns, log {both('log')} ns"
                          + (f", clock {both('clock')} GHz" if c["clock"] else ", no clock measured")
-                         + (f", independent register additions {both('adds')} instructions per ns" if c["adds"] else ""))
+                         + (f", independent register additions {both('adds')} instructions per ns" if c["adds"] else "")
+                         + (f", level-1 loads {both('l1 loads')} and stores {both('l1 stores')} per ns"
+                            if c["l1 loads"] and c["l1 stores"] else ""))
             particles_w, work_table = work_per_update(a.bench, scene, a.cell, a.short, a.long, work)
             assert particles_w == particles
             rows = [ph for ph, _ in PHASES] + ["other"]
@@ -549,8 +615,12 @@ def main():
                 bound_by = max(resources, key=resources.get)
                 bound = resources[bound_by]
                 scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
+                # The level-1 cache's ports: a separate column, not in the bound above (measured not to
+                # bind: docs/performance.md, "What bounds each phase").
+                l1_bound = (max(w["loads"] / c["l1 loads"], w["stores"] / c["l1 stores"])
+                            if c["l1 loads"] and c["l1 stores"] else 0.0)
                 if t is None:
-                    time_text = gf = gb = ratio = sratio = ipc = "–"
+                    time_text = gf = gb = ratio = sratio = l1ratio = ipc = "–"
                 else:
                     time_text = f"{t:.1f}"
                     gflops = w["flops"] / t if t > 0 else 0.0
@@ -559,6 +629,8 @@ def main():
                     gb = f"{gbs:.1f} ({100 * gbs / c['triad']:.0f} %)"
                     ratio = f"{t / bound:.1f} ({bound_by})" if bound > 0 else "–"
                     sratio = f"{t / scalar_bound:.1f}" if scalar_bound > 0 else "–"
+                    l1ratio = (f"{t / l1_bound:.1f} ({'loads' if w['loads'] / c['l1 loads'] >= w['stores'] / c['l1 stores'] else 'stores'})"
+                               if l1_bound > 0 else "–")
                     rate = w["instructions"] / t if t > 0 else 0.0
                     parts = ([f"{rate / c['clock']:.1f}"] if c["clock"] else []) + \
                         ([f"{100 * rate / c['adds']:.0f} %"] if c["adds"] else [])
@@ -566,7 +638,7 @@ def main():
                 name = "**the step**" if ph == "step" else ph
                 print(f"| {SCENE_NAMES.get(scene, scene)} | {name} | {time_text} | {work_cells(w)} | {gf} | {gb} "
                       f"| {resources['flops']:.1f}, {resources['bytes']:.1f}, {resources['divider']:.1f} | {ratio} | {sratio} "
-                      f"| {ipc} |")
+                      f"| {l1ratio} | {ipc} |")
             sys.stdout.flush()
     print()
     print("ceilings (bench_ceilings, one thread, measured just before and just after each scene's timed runs; "
@@ -577,7 +649,8 @@ def main():
     print("time: solver::timings()' share times the step's wall time per particle-update (median of "
           f"{a.runs} runs of {a.steps} steps); work: callgrind, {a.long} steps less {a.short}, per particle-update; "
           "bound: the largest of flops at the SSE2 ceiling, bytes at the 22 MB triad, divisions and roots at "
-          "their throughput (a packed division or root as one); `other`: code no phase's pattern names, chiefly what the "
+          "their throughput (a packed division or root as one); L1 ports' bound: the loads and the stores at the "
+          "level-1 cache's measured rates, the larger of the two; `other`: code no phase's pattern names, chiefly what the "
           "compiler inlined into the benchmark's step loop (the step's own serial work, the clock).")
 
 
