@@ -211,12 +211,29 @@ def classify(mnemonic, operands):
 
 
 # Level-1 data cache accesses of one execution (loads, stores), from the operands in Intel
-# syntax: an operand in brackets is read, or written where it is the destination of a move, or
-# both (a read-modify-write: `add QWORD PTR [rax],rdx`). push, call write the stack and pop, ret
-# read it; lea and nop name an address without touching it.
-STORE_ONLY_OPS = re.compile(r"^v?(mov\w*|set\w+|stos\w*)$")
+# syntax: an operand in brackets is read, or written where it is the destination of a move or
+# a store, or both (a read-modify-write: `add QWORD PTR [rax],rdx`). push and call write the
+# stack, pop, ret and leave read it; lea and nop name an address without touching it; a string
+# instruction reads or writes its implicit operands; a gather reads, and a scatter writes, one
+# element per lane. Counted as one access each, whatever their width (the ceilings measure
+# 16-byte accesses, what the portable SSE2 build makes).
+STORE_ONLY_OPS = re.compile(
+    r"^(v?mov(|s[sd]|ap[sd]|up[sd]|dq[au]|dqa(32|64)|dqu(8|16|32|64)|q|d|[hl]p[sd]|nt\w*|ddup)"
+    r"|set\w+|stos\w*|vp?maskmov\w*|v?extract\w+|v?pextr[bwdq]|vcvtps2ph|vpmov[a-z]*[bwdq]|kmov[bwdq]|"
+    r"stmxcsr|vstmxcsr|fn?st\w*|fistp?|fisttp)$")
 READ_ONLY_DESTINATION_OPS = re.compile(r"^(cmp|test|bt)$")
+# One memory operand that is only read (the rest of the operation is on fixed registers).
+READ_ONLY_SINGLE_OPS = re.compile(r"^(i?mul|i?div|f(i)?ld\w*|ldmxcsr|vldmxcsr|f(i)?(add|sub|subr|mul|div|divr|com|comp|ucom)\w*|"
+                                  r"jmp|push)$")
 NO_ACCESS_OPS = re.compile(r"^(lea|nop\w*|prefetch\w*|endbr64|clflush\w*)$")
+GATHER_OPS = re.compile(r"^vp?gather[dq](p[sd]|[dq])$")
+SCATTER_OPS = re.compile(r"^vp?scatter[dq](p[sd]|[dq])$")
+
+
+def _elements(mnemonic, register):
+    """Lanes of a gather's or scatter's data register."""
+    width = 64 if register.startswith("zmm") else 32 if register.startswith("ymm") else 16
+    return width // (8 if mnemonic.endswith(("pd", "q")) else 4)
 
 
 def memory_accesses(mnemonic, operands):
@@ -229,8 +246,18 @@ def memory_accesses(mnemonic, operands):
         return 1, ("[" in operands)
     if mnemonic.startswith("call"):
         return ("[" in operands), 1
-    if mnemonic.startswith("ret"):
+    if mnemonic.startswith("ret") or mnemonic == "leave":
         return 1, 0
+    if mnemonic in ("movs", "movsb", "movsw", "movsq") or (mnemonic == "movsd" and "es:[" in operands):
+        return 1, 1  # the string move: ds:[rsi] to es:[rdi]
+    if mnemonic.startswith("cmps"):
+        return 2, 0
+    if mnemonic.startswith(("lods", "scas")):
+        return 1, 0
+    if GATHER_OPS.match(mnemonic):
+        return _elements(mnemonic, operands.split(",")[0].strip()), 0
+    if SCATTER_OPS.match(mnemonic):
+        return 0, _elements(mnemonic, operands.split(",")[-1].strip())
     if "[" not in operands:
         return 0, 0
     destination = operands.split(",")[0]
@@ -238,12 +265,27 @@ def memory_accesses(mnemonic, operands):
         return 1, 0
     if READ_ONLY_DESTINATION_OPS.match(mnemonic):
         return 1, 0
-    if STORE_ONLY_OPS.match(mnemonic) and "," in operands:
+    if "," not in operands and READ_ONLY_SINGLE_OPS.match(mnemonic):
+        return 1, 0
+    if STORE_ONLY_OPS.match(mnemonic):
         return 0, 1
     return 1, 1
 
 
 _disassembly = {}
+PREFIXES = ("rep", "repz", "repnz", "repe", "repne", "lock", "bnd", "notrack", "data16", "addr32",
+            "cs", "ds", "es", "ss", "fs", "gs")
+
+
+def instruction(text):
+    """(mnemonic, operands) of one line of objdump's Intel syntax, without its prefixes (as many
+    as objdump prints: newer binutils write padding as `data16 cs nop WORD PTR [rax+rax*1+0x0]`)."""
+    mnem, _, ops = text.strip().partition(" ")
+    ops = ops.strip()
+    while mnem in PREFIXES and ops:
+        mnem, _, ops = ops.partition(" ")
+        ops = ops.strip()
+    return mnem, ops
 
 
 def disassembly(obj):
@@ -259,13 +301,9 @@ def disassembly(obj):
         except FileNotFoundError:
             sys.exit("roofline.py: objdump not found (scripts/setup.sh --bench installs binutils)")
         for line in text.splitlines():
-            m = re.match(r"\s*([0-9a-f]+):\s+(\S+)\s*(.*)$", line)
+            m = re.match(r"\s*([0-9a-f]+):\s+(\S+\s*.*)$", line)
             if m:
-                mnem = m.group(2)
-                ops = m.group(3)
-                if mnem in ("rep", "repz", "repnz", "lock", "bnd", "notrack", "data16") and ops:
-                    mnem, _, ops = ops.partition(" ")
-                table[int(m.group(1), 16)] = (mnem, ops)
+                table[int(m.group(1), 16)] = instruction(m.group(2))
     _disassembly[obj] = table
     return table
 
@@ -481,8 +519,32 @@ def self_test():
         (("ret", ""), (1, 0)),
         (("mulpd", "xmm0,xmm1"), (0, 0)),
         (("vmovapd", "YMMWORD PTR [rsp+0x20],ymm3"), (0, 1)),
+        (("sete", "BYTE PTR [rsp+0x8]"), (0, 1)),
+        (("jmp", "QWORD PTR [rip+0x2fe2]"), (1, 0)),
+        (("nop", "WORD PTR [rax+rax*1+0x0]"), (0, 0)),
+        (("movs", "QWORD PTR es:[rdi],QWORD PTR ds:[rsi]"), (1, 1)),
+        (("cmps", "BYTE PTR ds:[rsi],BYTE PTR es:[rdi]"), (2, 0)),
+        (("leave", ""), (1, 0)),
+        (("idiv", "DWORD PTR [rbx+0x4]"), (1, 0)),
+        (("inc", "DWORD PTR [rax]"), (1, 1)),
+        (("vmaskmovpd", "YMMWORD PTR [rdi],ymm1,ymm0"), (0, 1)),
+        (("vextractf128", "XMMWORD PTR [rsp],ymm0,0x1"), (0, 1)),
+        (("fstp", "QWORD PTR [rsp]"), (0, 1)),
+        (("fld", "QWORD PTR [rsp]"), (1, 0)),
+        (("vgatherdpd", "ymm0,QWORD PTR [rax+xmm1*8],ymm2"), (4, 0)),
+        (("vscatterdps", "DWORD PTR [rax+zmm1*4]{k1},zmm0"), (0, 16)),
+        (("movsd", "xmm0,QWORD PTR [rax]"), (1, 0)),
+        (("movsd", "QWORD PTR [rax],xmm0"), (0, 1)),
     ]
     bad += [(ins, memory_accesses(*ins), want) for ins, want in accesses if memory_accesses(*ins) != want]
+    parsed = [
+        ("data16 cs nop WORD PTR [rax+rax*1+0x0]", ("nop", "WORD PTR [rax+rax*1+0x0]")),
+        ("rep stos QWORD PTR es:[rdi],rax", ("stos", "QWORD PTR es:[rdi],rax")),
+        ("lock cmpxchg DWORD PTR [rdx],ecx", ("cmpxchg", "DWORD PTR [rdx],ecx")),
+        ("addpd  xmm1,XMMWORD PTR [rdx]", ("addpd", "xmm1,XMMWORD PTR [rdx]")),
+        ("ret", ("ret", "")),
+    ]
+    bad += [(text, instruction(text), want) for text, want in parsed if instruction(text) != want]
     text = """version: 1
 positions: instr line
 events: Ir DLmr DLmw
@@ -531,7 +593,8 @@ calls=1 0x50 0
     bad += [(got, want) for got, want in checks if got != want]
     for b in bad:
         print("roofline.py self-test: mismatch", b, file=sys.stderr)
-    print("roofline.py self-test:", "failed" if bad else f"{len(cases) + len(accesses) + len(checks)} checks pass")
+    print("roofline.py self-test:", "failed" if bad else
+          f"{len(cases) + len(accesses) + len(parsed) + len(checks)} checks pass")
     return 1 if bad else 0
 
 
