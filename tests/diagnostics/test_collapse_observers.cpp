@@ -60,6 +60,16 @@ std::vector<solver> on_1_2_3_threads() {
     return runs;
 }
 
+// A fixed pseudo-random sequence of doubles in [0, 1) (a 64-bit linear congruential generator,
+// its top 53 bits): the same numbers on every machine.
+struct sequence {
+    std::uint64_t state;
+    double operator()() {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1p-53;
+    }
+};
+
 }  // namespace
 
 TEST_CASE("surface_gap: the gap between two blocks is the distance between their faces", "[diagnostics]") {
@@ -183,11 +193,7 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
     // hottest particle; uniform temperatures give exactly their value, at particle 0.
     auto sol = two_blocks(2, 2);
     auto& ps = sol.particles();
-    std::uint64_t state = 12345;
-    auto next = [&] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1p-53;
-    };
+    sequence next{12345};
     double radius = 0.75e-3;
     auto disc = [&](const S::vector& c, std::size_t& count) {
         double mass = 0, heat = 0;
@@ -472,18 +478,20 @@ TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and 
 // What diagnostics::hot_spot reads of a solver, and nothing else: particles with positions,
 // masses and temperatures, and a thread count. It tries the observer in 3-D and with unequal
 // masses (whose sums round differently in any other order) without compiling a solver.
-template <int Dim>
-struct particles_only {
+// (particles_of: a store of the given fields and a thread count, all an observer reads.)
+template <int Dim, class... Fields>
+struct particles_of {
     using S = gimlet::space<Dim>;
     using vector = typename S::vector;
-    using store_type =
-        gimlet::particle_store<S, gimlet::field_list<gimlet::fields::position, gimlet::fields::mass, gimlet::fields::temperature>>;
+    using store_type = gimlet::particle_store<S, gimlet::field_list<Fields...>>;
     static constexpr int dim = Dim;
     store_type store;
     gimlet::solver_options<S> opt;
     [[nodiscard]] const store_type& particles() const { return store; }
     [[nodiscard]] const gimlet::solver_options<S>& options() const { return opt; }
 };
+template <int Dim>
+using particles_only = particles_of<Dim, gimlet::fields::position, gimlet::fields::mass, gimlet::fields::temperature>;
 
 TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force disc, the same bits on 1, 2 and 3 threads",
                        "[diagnostics][threads]", ((int Dim), Dim), 2, 3) {
@@ -494,11 +502,7 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
     // index) whatever the blocks.
     particles_only<Dim> run;
     auto& st = run.store;
-    std::uint64_t state = 2024;
-    auto next = [&] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1p-53;
-    };
+    sequence next{2024};
     for (int k = 0; k < 6000; ++k) {
         auto p = st[st.add()];
         auto& x = p.template get<gimlet::fields::position>();
@@ -578,6 +582,92 @@ TEMPLATE_TEST_CASE_SIG("hot_spot in 2-D and 3-D, unequal masses: the brute-force
     CHECK(empty.temperature == -std::numeric_limits<double>::infinity());
     CHECK(std::isnan(empty.max_temperature));
     CHECK(empty.particles == 0);
+}
+
+// What diagnostics::detail::strips reads of a solver: positions, velocities, bodies, initial
+// volumes and a thread count.
+template <int Dim>
+using strip_particles =
+    particles_of<Dim, gimlet::fields::position, gimlet::fields::velocity, gimlet::fields::body, gimlet::fields::volume0>;
+
+TEMPLATE_TEST_CASE_SIG("strips: the points of the plain membership test, with particles on the strips' edges, in 2-D and 3-D",
+                       "[diagnostics][threads]", ((int Dim), Dim), 2, 3) {
+    // strips passes over a particle outside a box around each body's strips before the exact
+    // test (surfaces.hpp). Each strip must hold what testing every particle against every line
+    // gives: lines of two bodies, three each, and 6,000 particles in
+    // three bodies (one that no line names). A third of them lie anywhere, a third within a
+    // line's strip, and a third exactly on its edges or one representable step inside or
+    // outside them, where the exact test decides.
+    strip_particles<Dim> run;
+    auto& st = run.store;
+    sequence next{77};
+    using vector = typename strip_particles<Dim>::vector;
+    const double w = 0.3e-3;
+    // Each body's lines run along one axis (body 0 along the first, body 2 along the last), so
+    // that its box is bounded across them: the box's edges are the outer strips' edges.
+    std::vector<gimlet::diagnostics::detail::strip_line<vector>> lines;
+    for (std::uint32_t body : {0u, 2u})
+        for (int k = 0; k < 3; ++k) {
+            const int axis = body == 0 ? 0 : Dim - 1;
+            vector point;
+            for (int d = 0; d < Dim; ++d) point[d] = 1e-3 * (2.0 + 3.0 * k + 0.7 * d + 0.1 * body);
+            lines.push_back({body, axis, point, w});
+        }
+    for (int q = 0; q < 6000; ++q) {
+        auto p = st[st.add()];
+        const auto body = static_cast<std::uint32_t>(next() * 3.0);
+        p.template get<gimlet::fields::body>() = body;
+        p.template get<gimlet::fields::volume0>() = std::pow(0.25e-3 * (0.5 + next()), Dim);
+        auto& v = p.template get<gimlet::fields::velocity>();
+        for (int d = 0; d < Dim; ++d) v[d] = 100.0 * next() - 50.0;
+        auto& x = p.template get<gimlet::fields::position>();
+        for (int d = 0; d < Dim; ++d) x[d] = 12e-3 * next();
+        if (q % 3 != 0) {  // near a line: on an edge of its strip (or one step to either side), or within it
+            const auto& line = lines[std::size_t(next() * double(lines.size()))];
+            for (int d = 0; d < Dim; ++d) {
+                if (d == line.axis) continue;
+                if (q % 3 == 2) {
+                    x[d] = line.point[d] + w * (2.0 * next() - 1.0);
+                    continue;
+                }
+                const double edge = next() < 0.5 ? line.point[d] - w : line.point[d] + w;
+                const double step = next();
+                x[d] = step < 1.0 / 3 ? edge : step < 2.0 / 3 ? std::nextafter(edge, 0.0) : std::nextafter(edge, 1.0);
+            }
+        }
+    }
+    const auto& xs = st.template column<gimlet::fields::position>();
+    const auto& vs = st.template column<gimlet::fields::velocity>();
+    const auto& bs = st.template column<gimlet::fields::body>();
+    const auto& v0 = st.template column<gimlet::fields::volume0>();
+    for (const int threads : {1, 2, 3}) {
+        run.opt.threads = threads;
+        const auto found = gimlet::diagnostics::detail::strips(run, lines);
+        REQUIRE(found.size() == lines.size());
+        std::size_t total = 0;
+        for (std::size_t j = 0; j < lines.size(); ++j) {
+            INFO("threads " << threads << ", line " << j);
+            const auto& line = lines[j];
+            std::vector<gimlet::diagnostics::detail::strip_point> plain;
+            for (std::size_t q = 0; q < st.size(); ++q) {
+                if (bs[q] != line.body) continue;
+                bool inside = true;
+                for (int d = 0; d < Dim; ++d)
+                    if (d != line.axis && std::abs(double(xs[q][d] - line.point[d])) > line.half_width) inside = false;
+                if (inside)
+                    plain.push_back({double(xs[q][line.axis]), 0.5 * std::pow(double(v0[q]), 1.0 / Dim), double(vs[q][line.axis])});
+            }
+            std::sort(plain.begin(), plain.end());  // as strips sorts the points it gathered in this order
+            REQUIRE(found[j].size() == plain.size());
+            bool same = true;
+            for (std::size_t k = 0; k < plain.size(); ++k)
+                same = same && found[j][k].coordinate == plain[k].coordinate && found[j][k].velocity == plain[k].velocity &&
+                       found[j][k].half_spacing == plain[k].half_spacing;
+            CHECK(same);
+            total += plain.size();
+        }
+        CHECK(total > 200);  // the strips are not empty: the comparison means something
+    }
 }
 
 TEST_CASE("hot_spot: a disc before the hottest particle that ties with its disc is not skipped", "[diagnostics]") {
