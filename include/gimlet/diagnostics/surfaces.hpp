@@ -77,7 +77,8 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
     // dimension along which one of its lines runs is open), so that most particles are passed
     // over with a test or two, whatever the number of lines. The box is widened by a second
     // half-width and a millionth of the coordinate, far more than the rounding of the exact
-    // test below, which still decides inside it: the points found are the same.
+    // test below (in float or double), which still decides inside it: the points found are the
+    // same. A line through a point that is not finite leaves its dimensions open.
     constexpr int dim = Solver::dim;
     constexpr double unbounded = std::numeric_limits<double>::infinity();
     struct body_box {
@@ -101,6 +102,10 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
                 continue;
             }
             const double centre = double(line.point[d]), reach = 2 * line.half_width + 1e-6 * std::abs(centre);
+            if (!std::isfinite(centre)) {  // a NaN point's strip takes every particle, as the exact test does
+                box->lo[d] = -unbounded, box->hi[d] = unbounded;
+                continue;
+            }
             box->lo[d] = std::min(box->lo[d], centre - reach);
             box->hi[d] = std::max(box->hi[d], centre + reach);
         }
