@@ -147,7 +147,7 @@ flagship="$build/examples/cavity_collapse/cavity_collapse"
 if [ "$quick" = 1 ]; then
     fl_args=(--velocity 300 --radius 10 --cell 2 --end-us 40); fl_repeats=1
 else
-    fl_args=(--velocity 300 --radius 10 --cell 0.5 --end-us 40); fl_repeats=3
+    fl_args=(--velocity 300 --radius 10 --cell 0.5 --end-us 40); fl_repeats=5
 fi
 fl_out=$(mktemp -d)
 load "outputs start"
