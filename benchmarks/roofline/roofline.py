@@ -224,7 +224,7 @@ STORE_ONLY_OPS = re.compile(
 READ_ONLY_DESTINATION_OPS = re.compile(r"^(cmp|test|bt)$")
 # One memory operand that is only read (the rest of the operation is on fixed registers).
 READ_ONLY_SINGLE_OPS = re.compile(r"^(i?mul|i?div|f(i)?ld\w*|ldmxcsr|vldmxcsr|f(i)?(add|sub|subr|mul|div|divr|com|comp|ucom)\w*|"
-                                  r"jmp|push)$")
+                                  r"jmp)$")
 NO_ACCESS_OPS = re.compile(r"^(lea|nop\w*|prefetch\w*|endbr64|clflush\w*)$")
 GATHER_OPS = re.compile(r"^vp?gather[dq](p[sd]|[dq])$")
 SCATTER_OPS = re.compile(r"^vp?scatter[dq](p[sd]|[dq])$")
@@ -680,8 +680,10 @@ def main():
                 scalar_bound = max(w["flops"] / c["scalar"], resources["bytes"], resources["divider"])
                 # The level-1 cache's ports: a separate column, not in the bound above (measured not to
                 # bind: docs/performance.md, "What bounds each phase").
-                l1_bound = (max(w["loads"] / c["l1 loads"], w["stores"] / c["l1 stores"])
-                            if c["l1 loads"] and c["l1 stores"] else 0.0)
+                l1 = ({"loads": w["loads"] / c["l1 loads"], "stores": w["stores"] / c["l1 stores"]}
+                      if c["l1 loads"] and c["l1 stores"] else {"loads": 0.0})
+                l1_by = max(l1, key=l1.get)
+                l1_bound = l1[l1_by]
                 if t is None:
                     time_text = gf = gb = ratio = sratio = l1ratio = ipc = "–"
                 else:
@@ -692,8 +694,7 @@ def main():
                     gb = f"{gbs:.1f} ({100 * gbs / c['triad']:.0f} %)"
                     ratio = f"{t / bound:.1f} ({bound_by})" if bound > 0 else "–"
                     sratio = f"{t / scalar_bound:.1f}" if scalar_bound > 0 else "–"
-                    l1ratio = (f"{t / l1_bound:.1f} ({'loads' if w['loads'] / c['l1 loads'] >= w['stores'] / c['l1 stores'] else 'stores'})"
-                               if l1_bound > 0 else "–")
+                    l1ratio = f"{t / l1_bound:.1f} ({l1_by})" if l1_bound > 0 else "–"
                     rate = w["instructions"] / t if t > 0 else 0.0
                     parts = ([f"{rate / c['clock']:.1f}"] if c["clock"] else []) + \
                         ([f"{100 * rate / c['adds']:.0f} %"] if c["adds"] else [])

@@ -97,15 +97,14 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
         }
         box->lines.push_back(j);
         for (int d = 0; d < dim; ++d) {
-            if (d == line.axis) {
+            const double centre = double(line.point[d]);
+            // Open along the line, and where its point is not finite (a NaN point's strip takes
+            // every particle, as the exact test does).
+            if (d == line.axis || !std::isfinite(centre)) {
                 box->lo[d] = -unbounded, box->hi[d] = unbounded;
                 continue;
             }
-            const double centre = double(line.point[d]), reach = 2 * line.half_width + 1e-6 * std::abs(centre);
-            if (!std::isfinite(centre)) {  // a NaN point's strip takes every particle, as the exact test does
-                box->lo[d] = -unbounded, box->hi[d] = unbounded;
-                continue;
-            }
+            const double reach = 2 * line.half_width + 1e-6 * std::abs(centre);
             box->lo[d] = std::min(box->lo[d], centre - reach);
             box->hi[d] = std::max(box->hi[d], centre + reach);
         }
