@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -122,6 +123,45 @@ struct listed_times {
 template <class F>
 listed_times(std::vector<double>, std::size_t, F) -> listed_times<F>;
 
+// The figures drawn while the run goes on: `plot.py --follow` reads each snapshot's index and
+// time as its map is written and draws the map from processor time the run leaves idle, and
+// draws the rest when the run ends (closes the pipe). Drawn after the run, the figures took 12 %
+// of the quickstart's run with outputs off (docs/performance.md, "The flagship's outputs").
+class plotter {
+public:
+    explicit plotter(const std::string& command) {
+        // A plotter that cannot start (no python3, no matplotlib) exits; writing to its pipe
+        // then fails with EPIPE rather than stopping the run with SIGPIPE.
+        std::signal(SIGPIPE, SIG_IGN);
+        pipe_ = popen(command.c_str(), "w");
+    }
+    plotter(const plotter&) = delete;
+    plotter& operator=(const plotter&) = delete;
+    // Left without finish() (the run threw): the plotter stops without drawing.
+    ~plotter() {
+        if (pipe_) std::fputs("abort\n", pipe_), pclose(pipe_);
+    }
+    // A map written: its index and time after contact, as snapshots/times.csv has them, and
+    // whether it is the run's last.
+    void map(std::size_t index, double after_contact_us, bool last) {
+        if (pipe_ && (std::fprintf(pipe_, "%zu %.17g%s\n", index, after_contact_us, last ? " last" : "") < 0 ||
+                      std::fflush(pipe_) != 0))
+            failed_ = true;
+    }
+    // Ends the run's part and waits for the figures; true if every one was drawn.
+    bool finish() {
+        if (!pipe_) return !failed_;
+        const int status = pclose(pipe_);
+        pipe_ = nullptr;
+        failed_ = failed_ || status != 0;
+        return !failed_;
+    }
+
+private:
+    FILE* pipe_ = nullptr;
+    bool failed_ = false;
+};
+
 // Where a run writes, and whether it checkpoints or resumes.
 struct run_files {
     std::filesystem::path out;
@@ -129,6 +169,7 @@ struct run_files {
     double checkpoint_at = 0;          // s
     std::filesystem::path restart;     // empty: a fresh run
     bool quiet = false;
+    plotter* figures = nullptr;  // none: no figures
 };
 
 // Keeps the first `keep` lines of a text file (a header counts as one) and drops the rest: a
@@ -275,13 +316,19 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     auto peaks = gimlet::diagnostics::every_steps(1, [&](const auto& so) {
         sum.track(so.steps() == sampled_step ? sampled : mon.peaks(so, sum.max_hot_spot));
     });
+    // Without periodic snapshots, the one at or after the last listed time is the run's last.
+    const double last_listed = s.snapshots_after_contact.empty()
+                                   ? std::numeric_limits<double>::infinity()
+                                   : contact_time(s) + *std::max_element(s.snapshots_after_contact.begin(),
+                                                                         s.snapshots_after_contact.end());
     auto write_snapshot = [&](const auto& so) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);
         write_map(out / "snapshots" / name, so);
         pvd->write(vtp, so);
-        times << snapshot << ',' << double(so.time()) * 1e6 << ',' << (double(so.time()) - contact_time(s)) * 1e6
-              << '\n';
+        const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
+        times << snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
+        if (io.figures) io.figures->map(snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);
         ++snapshot;
     };
     auto snapshots = gimlet::diagnostics::every_time(s.snapshot_every > 0 ? s.snapshot_every : 2 * s.end,
@@ -400,10 +447,10 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
 int main(int argc, char** argv) try {
     // --quiet is a switch without a value; the other flags are name-value pairs.
     std::vector<char*> rest{argv[0]};
-    bool quiet = false, figures = true;
+    bool quiet = false, figures_on = true;
     for (int i = 1; i < argc; ++i) {
         if (std::string(argv[i]) == "--quiet") quiet = true;
-        else if (std::string(argv[i]) == "--no-figures") figures = false;
+        else if (std::string(argv[i]) == "--no-figures") figures_on = false;
         else rest.push_back(argv[i]);
     }
     example::cli args(static_cast<int>(rest.size()), rest.data(), cavity_collapse::usage);
@@ -420,16 +467,27 @@ int main(int argc, char** argv) try {
         throw std::invalid_argument("--checkpoint-at-us = " + std::to_string(io.checkpoint_at * 1e6) +
                                     " is invalid; valid range: [0, --end-us) so the run reaches it");
 
+    std::string plot;  // the command that draws the figures after the run
+    std::optional<plotter> figures;
+    if (figures_on) {
+        // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
+        const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
+        plot = python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" \"" + io.out.string() + "\"";
+        std::ostringstream cell;  // as summary.csv has it: the maps' particle spacing is half of it
+        gimlet::io::exact_numbers(cell);
+        cell << s.cell * 1e3;
+        figures.emplace(python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" --follow " + cell.str() + " \"" +
+                        io.out.string() + "\" 2>/dev/null");
+        io.figures = &*figures;
+    }
+
     // Every flag combination a user may give is one binary of two solvers: the single field, and
     // a multi-field law with the temperature chosen at run time (chosen_law, chosen_temperature in
     // cavity_collapse.hpp), instead of six (3 contact laws x 2 temperatures).
     const int rc = s.contact == contact_kind::single ? run(s, io, gimlet::contact::single_field{})
                                                      : run(s, io, chosen_law(s.contact));
-    if (!figures) return rc;
-    // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
-    const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
-    const std::string plot = python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" \"" + io.out.string() + "\"";
-    if (std::system((plot + " 2>/dev/null").c_str()) == 0)
+    if (!figures_on) return rc;
+    if (figures->finish())
         std::printf("  figures: %s (series.png, map_*.png); ParaView: %s\n", io.out.string().c_str(),
                     (io.out / "snapshots" / "particles.pvd").string().c_str());
     else
