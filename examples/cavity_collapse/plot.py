@@ -307,119 +307,188 @@ def lower_priority():
 
 
 def draw_while_running(out, spacing, jobs, results):
-    """The child of --follow: draws each snapshot's map as its parent hands it over, from idle
-    processor time only, and sends back its panels; handed the snapshots' times once the last
-    map is in, draws the many-panel figures if it drew every map itself. A figure that fails
-    here is left to the run's end, which draws it again and reports the error."""
+    """The child of --follow: asks its parent for a job, does it, and asks again (its reply is
+    the next request), from idle processor time only. A job: a snapshot's map, whose panels it
+    sends back, or, after the last map, one of the many-panel figures, which it draws if it drew
+    every map itself. A figure that fails here is drawn again, and its error reported, at the end."""
     lower_priority()
     panels = {}
+    results.send(("ready",))
     for job in iter(jobs.recv, None):
+        reply = ("failed",)
         try:
             if job[0] == "map":
                 _, i, tc = job
                 panels[i] = plot_map(out, spacing, i, tc)
-                results.send(("map", i, panels[i]))
-            elif len(job[1]["index"]) >= 2 and sorted(panels) == list(range(len(job[1]["index"]))):
+                reply = ("map", i, panels[i])
+            elif len(job[2]["index"]) >= 2 and sorted(panels) == list(range(len(job[2]["index"]))):
                 # every map of the run, from the first, drawn here
-                times = job[1]
-                for k, (_, _, label, cmap, lo, name) in enumerate(PANELS):
-                    plot_maps(out, times, [panels[i][k] for i in times["index"]], label, cmap, lo, name)
-                results.send(("many-panel",))
+                _, k, times = job
+                _, _, label, cmap, lo, name = PANELS[k]
+                plot_maps(out, times, [panels[i][k] for i in times["index"]], label, cmap, lo, name)
+                reply = ("many-panel", k)
         except Exception:  # noqa: BLE001 (drawn again, and reported, at the end)
             pass
+        results.send(reply)
 
 
-def follow(out, spacing):
-    """The figures of a run still going on (--follow). The run writes one line on this script's
-    standard input after each snapshot's map, INDEX TIME_AFTER_CONTACT_US, with the word `last`
-    after the last map it will write, and closes the input when it ends (after a line `abort`
-    if it failed: then nothing more is drawn). A child process draws
-    each map as it comes, and the many-panel figures after the last, from processor time the run
-    leaves idle; the run's end stops it, and what it has not drawn is drawn with the rest.
-    Returns the panels drawn, by snapshot index, and whether the many-panel figures were."""
-    context = multiprocessing.get_context("fork")
-    jobs, to_child = context.Pipe(duplex=False)
-    from_child, results = context.Pipe(duplex=False)
-    child = context.Process(target=draw_while_running, args=(out, spacing, jobs, results), daemon=True)
-    child.start()
-    jobs.close(), results.close()  # the child's ends: the parent sees the child's exit as EOF
-    panels, many_panel = {}, []
+class Follower:
+    """The figures of a run still going on (plot.py --follow). The run writes one line on this
+    script's standard input after each snapshot's map, INDEX TIME_AFTER_CONTACT_US, with the
+    word `last` after the last map it will write, and closes the input when it ends (after a
+    line `abort` if it failed: then nothing is drawn). A child process at idle priority draws
+    the maps as they come, and the many-panel figures after the last, from processor time the
+    run leaves idle. It takes one job at a time, so that at the run's end the jobs it has not
+    started go to the figures drawn at full priority (draw()), while it finishes its own."""
 
-    def receive():  # what the child has drawn, as it comes: its sends block until read
+    def __init__(self, out, spacing):
+        context = multiprocessing.get_context("fork")
+        jobs, self.to_child = context.Pipe(duplex=False)
+        self.from_child, results = context.Pipe(duplex=False)
+        self.child = context.Process(target=draw_while_running, args=(out, spacing, jobs, results), daemon=True)
+        self.child.start()
+        jobs.close(), results.close()  # the child's ends: the parent sees the child's exit as EOF
+        self.panels, self.many_panel = {}, set()  # the many-panel figures drawn: PANELS' indices
+        self.lock = threading.Lock()
+        self.pending, self.current, self.idle, self.ended = [], None, False, False
+        self.times = {"index": [], "time_after_contact_us": []}
+        self.receiver = threading.Thread(target=self.receive, daemon=True)
+        self.receiver.start()
+
+    def send(self, job):  # under the lock
+        try:
+            self.to_child.send(job)
+        except OSError:  # the child has ended: its jobs are drawn at the end
+            pass
+
+    def hand_over(self):  # under the lock: the child is free
+        self.current = None
+        if self.ended:
+            self.send(None)
+        elif self.pending:
+            self.current = self.pending.pop(0)
+            self.send(self.current)
+        else:
+            self.idle = True
+
+    def add(self, job):
+        with self.lock:
+            self.pending.append(job)
+            if self.idle:
+                self.idle = False
+                self.hand_over()
+
+    def receive(self):  # the child's replies, as they come (its sends block until read)
         while True:
             try:
-                done = from_child.recv()
-            except (EOFError, OSError):  # the child has ended (a message cut short by the kill too)
+                done = self.from_child.recv()
+            except (EOFError, OSError):  # the child has ended (a reply cut short by the kill too)
                 return
-            if done[0] == "map":
-                panels[done[1]] = done[2]
-            else:
-                many_panel.append(True)
+            with self.lock:
+                if done[0] == "map":
+                    self.panels[done[1]] = done[2]
+                elif done[0] == "many-panel":
+                    self.many_panel.add(done[1])
+                self.hand_over()
 
-    receiver = threading.Thread(target=receive, daemon=True)
-    receiver.start()
-    times = {"index": [], "time_after_contact_us": []}
-    for line in sys.stdin:
-        if line.strip() == "abort":  # the run failed: no figures
-            child.kill()
-            sys.exit(1)
-        i, tc, *last = line.split()
-        times["index"].append(int(i))
-        times["time_after_contact_us"].append(float(tc))
-        try:
-            to_child.send(("map", int(i), float(tc)))
+    def read(self, lines):
+        """Hands the child each map the run reports; returns at the run's end."""
+        for line in lines:
+            if line.strip() == "abort":  # the run failed: no figures
+                self.child.kill()
+                sys.exit(1)
+            i, tc, *last = line.split()
+            self.times["index"].append(int(i))
+            self.times["time_after_contact_us"].append(float(tc))
+            self.add(("map", int(i), float(tc)))
             if last:
-                to_child.send(("many-panel", times))
-        except OSError:  # the child has ended: the run's end draws it all
-            pass
-    # The run is over. What the child is drawing is drawn again at full priority: on a busy
-    # machine a process at idle priority could wait for long.
-    child.kill()
-    child.join()
-    receiver.join()
-    return panels, bool(many_panel)
+                for k in range(len(PANELS)):
+                    self.add(("many-panel", k, {key: list(v) for key, v in self.times.items()}))
+
+    def stop(self):
+        """The run is over: the child gets no more jobs. Returns the job it is doing, ("map",
+        index) or ("many-panel", PANELS' index), or None."""
+        with self.lock:
+            self.ended, self.pending = True, []
+            if self.idle:
+                self.send(None)
+            return self.current[:2] if self.current else None
+
+    def finish(self, timeout):
+        """Waits for the child to finish its job, at most timeout seconds (at idle priority, on
+        a busy machine, it might wait long; then it is stopped, and its job drawn again)."""
+        self.child.join(timeout)
+        if self.child.is_alive():
+            self.child.kill()
+            self.child.join()
+        self.receiver.join()
 
 
-def draw(out, spacing, panels, many_panel=False):
+def draw(out, spacing, follower=None):
     """Every figure of the run in out, on every core this process may use (the run that wrote
-    the data is over): first the snapshots' maps not in panels (each read once; each returns its
-    panels of the many-panel figures), then the two many-panel figures, which need every
-    snapshot's panel, unless many_panel says they are drawn. Every figure is attempted; if any
-    failed, the first failure's error is raised at the end, after the others are written."""
+    the data is over): the snapshots' maps the follower's child (if any) has not drawn (each
+    read once; each returns its panels of the many-panel figures), the series and the hot
+    material, then the two many-panel figures, which need every snapshot's panel, unless the
+    child drew them. Every figure is attempted; if any failed, the first failure's error is
+    raised at the end, after the others are written."""
+    busy = follower.stop() if follower else None  # the child's job, which it goes on with
+    busy_map = busy[1] if busy and busy[0] == "map" else None
+    panels = follower.panels if follower else {}
     snaps = out / "snapshots"
     times = read(snaps / "times.csv") if (snaps / "times.csv").exists() else {}
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     snapshots = list(zip(times.get("index", []), times.get("time_after_contact_us", [])))
-    todo = [(i, tc) for i, tc in snapshots if int(i) not in panels]
-    jobs = len(todo) + 2
+    todo = [(i, tc) for i, tc in snapshots if int(i) not in panels and int(i) != busy_map]
     errors = []
-    with ProcessPoolExecutor(max_workers=max(1, min(jobs, cores))) as pool:
+
+    def result(done):
+        try:
+            return done.result()
+        except Exception as e:  # noqa: BLE001 (reported at the end)
+            errors.append(e)
+
+    drawn = follower.many_panel if follower else set()
+    submitted = set()
+
+    def many_panel(skip):  # the many-panel figures not drawn yet, once every snapshot's panel is in
+        if len(snapshots) < 2 or errors:
+            return []
+        ordered = [panels[int(i)] for i, _ in snapshots]
+        jobs = [(k, pool.submit(plot_maps, out, times, [p[k] for p in ordered], label, cmap, lo, name))
+                for k, (_, _, label, cmap, lo, name) in enumerate(PANELS)
+                if k not in drawn and k not in submitted and (k,) != skip]
+        submitted.update(k for k, _ in jobs)
+        return [done for _, done in jobs]
+
+    with ProcessPoolExecutor(max_workers=max(1, min(len(todo) + 2, cores))) as pool:
+        # Every panel in (the child drew every map): the many-panel figures, the longest, first,
+        # but for the one the child is drawing.
+        first = many_panel(busy[1:] if busy else None) if not todo and busy_map is None else []
         maps = [(int(i), pool.submit(plot_map, out, spacing, i, tc)) for i, tc in todo]
-        rest = [pool.submit(plot_series, out), pool.submit(plot_hot_material, out)]
-        for i, done in maps:
-            try:
-                panels[i] = done.result()
-            except Exception as e:  # noqa: BLE001 (reported at the end)
-                errors.append(e)
-        if len(snapshots) >= 2 and not errors and not many_panel:  # they need every snapshot's panel
-            ordered = [panels[int(i)] for i, _ in snapshots]
-            rest += [pool.submit(plot_maps, out, times, [p[k] for p in ordered], label, cmap, lo, name)
-                     for k, (_, _, label, cmap, lo, name) in enumerate(PANELS)]
+        rest = first + [pool.submit(plot_series, out), pool.submit(plot_hot_material, out)]
+        found = {i: result(done) for i, done in maps}
+        if follower:
+            # The child's last job: 5 s is ten times the longest (a many-panel figure) on an idle
+            # machine.
+            follower.finish(timeout=5.0)
+            if busy_map is not None and busy_map not in panels:  # stopped before it was done
+                found[busy_map] = result(pool.submit(plot_map, out, spacing, busy_map, dict(snapshots)[busy_map]))
+        panels.update({i: p for i, p in found.items() if p is not None})
+        rest += many_panel(None)  # those the child did not draw, and did not finish
         for done in rest:
-            try:
-                done.result()
-            except Exception as e:  # noqa: BLE001
-                errors.append(e)
+            result(done)
     if errors:
         raise errors[0]
 
 
 if __name__ == "__main__":
     if sys.argv[1] == "--follow":  # plot.py --follow CELL_MM OUTPUT_DIR, from cavity_collapse
-        out = Path(sys.argv[3])
-        # 2 x 2 particles per cell
-        draw(out, float(sys.argv[2]) / 2, *follow(out, float(sys.argv[2]) / 2))
+        out, spacing = Path(sys.argv[3]), float(sys.argv[2]) / 2  # 2 x 2 particles per cell
+        follower = Follower(out, spacing)
+        follower.read(sys.stdin)
+        draw(out, spacing, follower)
     else:
         out = Path(sys.argv[1])
+        # 2 x 2 particles per cell
         spacing = read(out / "summary.csv")["cell_mm"][0] / 2 if (out / "summary.csv").exists() else 0.25
-        draw(out, spacing, {})
+        draw(out, spacing)
