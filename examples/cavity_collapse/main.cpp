@@ -19,7 +19,9 @@
 // mode), particle snapshots for
 // ParaView (OUTPUT/snapshots/particles.pvd and particles_NNNNNN.vtp) and for the figures
 // (OUTPUT/snapshots/map_NNNN.csv) and, where python3 with matplotlib is available, PNG maps of
-// pressure and temperature and a plot of the series. docs/reproduction.md defines each quantity.
+// pressure and temperature and a plot of the series (plot.py: the maps are drawn while the run
+// goes on, from processor time it leaves idle, the rest when it ends; --no-figures skips them).
+// docs/reproduction.md defines each quantity.
 // --checkpoint writes the run's state at --checkpoint-at-us; --restart resumes from it (give
 // the original run's other flags, --end-us included: the grid is sized for it) and continues
 // the same outputs. Exit status: 0 done, 1 bad
