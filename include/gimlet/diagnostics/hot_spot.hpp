@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -95,6 +96,11 @@ template <class Solver>
     // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
     // The same pass finds each block's hottest particle: the first of its largest temperatures,
     // NaN never taken (`none` where the block has only NaN).
+    // The passes run in one parallel region, with barriers between them: a region costs about
+    // ten barriers where idle threads sleep (OMP_WAIT_POLICY=passive), and five regions a call
+    // took as long as the second thread saved (docs/performance.md, "The figures drawn while
+    // the run goes on"). Each pass's shares are set up where its size is known: the first
+    // here, the others by one thread between the passes.
     auto& block_lo = work.block_lo;
     auto& block_hi = work.block_hi;
     auto& block_hottest = work.block_hottest;
@@ -102,76 +108,32 @@ template <class Solver>
     block_lo.assign(blocks, x[0]);
     block_hi.assign(blocks, x[0]);
     block_hottest.assign(blocks, none);
-    detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
-        vector lo_b = x[0], hi_b = x[0];
-        std::size_t h = none;
-        for (std::size_t i = first; i < last; ++i) {
-            lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
-            if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
-        }
-        block_lo[b] = lo_b;
-        block_hi[b] = hi_b;
-        block_hottest[b] = h;
-    });
+    // Every entry of bin, cell and the copies is written before it is read.
+    auto& start = work.start;
+    auto& bin = work.bin;
+    auto& cell = work.cell;  // each particle's bin, per axis
+    auto& cursor = work.cursor;  // per block and bin: a count, then an offset
+    auto& block_max = work.block_max;  // per block and bin, the hottest particle's temperature
+    auto& sorted_x = work.sorted_x;
+    auto& sorted_m = work.sorted_m;
+    auto& sorted_T = work.sorted_T;
+    bin.resize(n);
+    cell.resize(n);
+    sorted_x.resize(n);
+    sorted_m.resize(n);
+    sorted_T.resize(n);
+    const int team = blocks > 1 ? threads : 1;
+    detail::thread_shares bounds_pass(static_cast<std::ptrdiff_t>(blocks), team);
+    std::optional<detail::thread_shares> count_pass, copy_pass, merge_pass;
     vector lo = x[0], hi = x[0];
-    for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
     std::array<std::size_t, dim> bins{};
-    std::size_t total = 1;
-    for (int d = 0; d < dim; ++d) {
-        bins[d] = std::size_t(double(hi[d] - lo[d]) / radius) + 1;
-        total *= bins[d];
-    }
+    std::size_t total = 1, sort_blocks = 1, merge_blocks = 1;
     auto bin_of = [&](const vector& p, int d) { return std::size_t(double(p[d] - lo[d]) / radius); };
     auto flat = [&](const std::array<std::size_t, dim>& b) {
         std::size_t k = 0;
         for (int d = dim - 1; d >= 0; --d) k = k * bins[d] + b[d];
         return k;
     };
-    // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a disc
-    // sums is copied in that order (position, mass, temperature), so that a disc reads its
-    // bins' particles contiguously. Each block counts its particles per bin and takes its
-    // offsets within each bin in block order, so the order is the serial sort's: by bin, then
-    // by index. (A count per block and bin: at most n / bins blocks, so that the counts take no
-    // more room than the particles.)
-    const std::size_t sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
-    // Every entry of bin, cell and the copies is written before it is read.
-    auto& start = work.start;
-    auto& bin = work.bin;
-    auto& cell = work.cell;  // each particle's bin, per axis
-    auto& cursor = work.cursor;  // per block and bin: a count, then an offset
-    bin.resize(n);
-    cell.resize(n);
-    cursor.assign(sort_blocks * total, 0);
-    // Per block and bin, the hottest particle's temperature (for the bound on each disc below).
-    auto& block_max = work.block_max;
-    block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
-    detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
-        std::size_t* count = cursor.data() + b * total;
-        double* t_max = block_max.data() + b * total;
-        for (std::size_t i = first; i < last; ++i) {
-            for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
-            bin[i] = flat(cell[i]);
-            ++count[bin[i]];
-            t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
-        }
-    });
-    detail::block_offsets(cursor, sort_blocks, total, start);
-    auto& sorted_x = work.sorted_x;
-    auto& sorted_m = work.sorted_m;
-    auto& sorted_T = work.sorted_T;
-    sorted_x.resize(n);
-    sorted_m.resize(n);
-    sorted_T.resize(n);
-    detail::for_each_block(n, sort_blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
-        std::size_t* at = cursor.data() + b * total;
-        for (std::size_t i = first; i < last; ++i) {
-            const std::size_t j = at[bin[i]]++;
-            sorted_x[j] = x[i];
-            sorted_m[j] = double(m[i]);
-            sorted_T[j] = double(T[i]);
-        }
-    });
-
     // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
     // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
     // 3^dim offsets and testing each cost a fifth of the search's instructions
@@ -192,19 +154,10 @@ template <class Solver>
                     for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins[1] + y) * bins[0] + x0);
         }
     };
-    // Each bin's hottest particle: the blocks' maxima (a maximum, whatever the blocks), in
-    // the first block's entries; the bins split between the threads where there are many.
-    detail::for_each_block(total, detail::observer_blocks(total * (sort_blocks - 1), threads), true, threads,
-                           [&](std::size_t, std::size_t first, std::size_t last) {
-                               for (std::size_t b = 1; b < sort_blocks; ++b)
-                                   for (std::size_t k = first; k < last; ++k)
-                                       block_max[k] = std::max(block_max[k], block_max[b * total + k]);
-                           });
-    const double* bin_max = block_max.data();
     // The hottest particle of the 3^dim bins around particle i's (NaN never taken).
     auto bound_at = [&](std::size_t i) {
         double bound = -std::numeric_limits<double>::infinity();
-        around(i, [&](std::size_t b) { bound = std::max(bound, bin_max[b]); });
+        around(i, [&](std::size_t b) { bound = std::max(bound, block_max[b]); });
         return bound;
     };
     // The mean over the disc centred on particle i, whose bins' hottest particle is `bound`,
@@ -229,30 +182,8 @@ template <class Solver>
         });
         return ref + excess / mass;
     };
-    // The hottest particle, the first of the largest temperatures, NaN never taken: the blocks'
-    // own, merged in block order. Where every temperature is NaN, every disc's mean is NaN and
-    // none is named.
-    std::size_t hottest = none;
-    for (const std::size_t h : block_hottest)
-        if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
-    if (hottest == none) return r;  // none, as the result's defaults say
-    r.max_temperature = double(T[hottest]);
-    // A centre whose bins' hottest particle is cooler than the disc around the hottest particle
-    // (or than `above`, whichever is hotter: the floor) cannot hold the hottest disc, since its
-    // mean is at most that particle's temperature, exactly (above). Nor where that particle is
-    // as hot as the floor and the centre comes after the hottest particle, whose own disc is
-    // then tried and would win the tie. So the result is that of trying every centre, at O(n)
-    // cost where the hot material is small, and where the temperatures are uniform (before a
-    // hot spot forms) every centre after the hottest particle is skipped. The hottest
-    // particle's disc is summed once and its bits reused in the loop, so the floor and that
-    // disc are the same number whatever the compiler does with the two call sites.
-    std::size_t hottest_count = 0;
-    const double hottest_mean = disc(hottest, bound_at(hottest), hottest_count);
-    const double sought = above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
-    const double floor = std::max(hottest_mean, sought);
-    // The centres are tried in parallel on the solver's threads (where the temperatures are
-    // nearly but not exactly uniform, few are skipped). The hottest disc, ties to the
-    // lowest index, is a maximum in a total order, so it does not depend on the thread count.
+    // The centres' search (below) keeps the hottest disc, ties to the lowest index: a maximum
+    // in a total order, so it does not depend on the thread count.
     struct best_disc {
         double mean = -std::numeric_limits<double>::infinity();
         std::size_t index = 0, count = 0;
@@ -262,25 +193,121 @@ template <class Solver>
         }
     };
     best_disc best;
-    GIMLET_OMP(parallel num_threads(threads) if (blocks > 1))
+    std::size_t hottest = none, hottest_count = 0;
+    double hottest_mean = 0, floor = 0;
+    GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
     {
-        best_disc local;
-        // Centres on demand in small chunks, not in the solver's shares (detail::thread_shares):
-        // a centre's cost varies a hundredfold (most are skipped, a hot one sums its disc), and
-        // the centres are visited once a call, so there is no data to keep near a core; the
-        // hottest disc is the same whoever tries it.
-        GIMLET_OMP(for schedule(dynamic, 256) nowait)
-        for (std::ptrdiff_t k = 0; k < count_n; ++k) {
-            const auto i = static_cast<std::size_t>(k);
-            const double bound = bound_at(i);
-            if (bound < floor || (bound == floor && i > hottest)) continue;
-            std::size_t count = hottest_count;
-            const double mean = i == hottest ? hottest_mean : disc(i, bound, count);
-            if (local.beaten_by(mean, i)) local = {mean, i, count, true};
+        // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
+        // The same pass finds each block's hottest particle: the first of its largest
+        // temperatures, NaN never taken (`none` where the block has only NaN).
+        detail::for_each_block_of(bounds_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
+            vector lo_b = x[0], hi_b = x[0];
+            std::size_t h = none;
+            for (std::size_t i = first; i < last; ++i) {
+                lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
+                if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
+            }
+            block_lo[b] = lo_b;
+            block_hi[b] = hi_b;
+            block_hottest[b] = h;
+        });
+        GIMLET_OMP(barrier)
+        GIMLET_OMP(single)
+        {
+            // The hottest particle, the first of the largest temperatures, NaN never taken:
+            // the blocks' own, merged in block order. Where every temperature is NaN, every
+            // disc's mean is NaN and none is named: the passes below are skipped.
+            for (const std::size_t h : block_hottest)
+                if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
+            for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
+            for (int d = 0; d < dim; ++d) {
+                bins[d] = std::size_t(double(hi[d] - lo[d]) / radius) + 1;
+                total *= bins[d];
+            }
+            // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
+            // What a disc sums is copied in that order (position, mass, temperature), so that
+            // a disc reads its bins' particles contiguously. Each block counts its particles
+            // per bin and takes its offsets within each bin in block order, so the order is
+            // the serial sort's: by bin, then by index. (A count per block and bin: at most
+            // n / bins blocks, so that the counts take no more room than the particles.)
+            sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
+            merge_blocks = detail::observer_blocks(total * (sort_blocks - 1), threads);
+            if (hottest != none) {
+                cursor.assign(sort_blocks * total, 0);
+                block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
+                count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
+            }
         }
-        GIMLET_OMP(critical(gimlet_hot_spot))
-        if (local.found && best.beaten_by(local.mean, local.index)) best = local;
+        if (hottest != none) {
+            detail::for_each_block_of(*count_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
+                std::size_t* count = cursor.data() + b * total;
+                double* t_max = block_max.data() + b * total;
+                for (std::size_t i = first; i < last; ++i) {
+                    for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
+                    bin[i] = flat(cell[i]);
+                    ++count[bin[i]];
+                    t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
+                }
+            });
+            GIMLET_OMP(barrier)
+            GIMLET_OMP(single)
+            detail::block_offsets(cursor, sort_blocks, total, start);
+            // The copies in bin order, and each bin's hottest particle: the blocks' maxima (a
+            // maximum, whatever the blocks), in the first block's entries, the bins split
+            // between the threads where there are many. The two passes touch different data.
+            detail::for_each_block_of(*copy_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
+                std::size_t* at = cursor.data() + b * total;
+                for (std::size_t i = first; i < last; ++i) {
+                    const std::size_t j = at[bin[i]]++;
+                    sorted_x[j] = x[i];
+                    sorted_m[j] = double(m[i]);
+                    sorted_T[j] = double(T[i]);
+                }
+            });
+            detail::for_each_block_of(*merge_pass, total, merge_blocks, [&](std::size_t, std::size_t first, std::size_t last) {
+                for (std::size_t b = 1; b < sort_blocks; ++b)
+                    for (std::size_t k = first; k < last; ++k) block_max[k] = std::max(block_max[k], block_max[b * total + k]);
+            });
+            GIMLET_OMP(barrier)
+            // A centre whose bins' hottest particle is cooler than the disc around the hottest
+            // particle (or than `above`, whichever is hotter: the floor) cannot hold the
+            // hottest disc, since its mean is at most that particle's temperature, exactly
+            // (above). Nor where that particle is as hot as the floor and the centre comes
+            // after the hottest particle, whose own disc is then tried and would win the tie.
+            // So the result is that of trying every centre, at O(n) cost where the hot
+            // material is small, and where the temperatures are uniform (before a hot spot
+            // forms) every centre after the hottest particle is skipped. The hottest
+            // particle's disc is summed once and its bits reused in the loop, so the floor and
+            // that disc are the same number whatever the compiler does with the two call sites.
+            GIMLET_OMP(single)
+            {
+                hottest_mean = disc(hottest, bound_at(hottest), hottest_count);
+                const double sought =
+                    above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
+                floor = std::max(hottest_mean, sought);
+            }
+            // The centres are tried on demand in small chunks, not in the solver's shares
+            // (detail::thread_shares): a centre's cost varies a hundredfold (most are skipped,
+            // a hot one sums its disc), and the centres are visited once a call, so there is no
+            // data to keep near a core; the hottest disc is the same whoever tries it.
+            best_disc local;
+            GIMLET_OMP(for schedule(dynamic, 256) nowait)
+            for (std::ptrdiff_t k = 0; k < count_n; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const double bound = bound_at(i);
+                if (bound < floor || (bound == floor && i > hottest)) continue;
+                std::size_t count = hottest_count;
+                const double mean = i == hottest ? hottest_mean : disc(i, bound, count);
+                if (local.beaten_by(mean, i)) local = {mean, i, count, true};
+            }
+            GIMLET_OMP(critical(gimlet_hot_spot))
+            if (local.found && best.beaten_by(local.mean, local.index)) best = local;
+        }
     }
+    if (hottest == none) return r;  // none, as the result's defaults say
+    r.max_temperature = double(T[hottest]);
     r.temperature = best.mean;
     if (best.found) {
         r.centre = x[best.index];

@@ -22,21 +22,30 @@ namespace gimlet::detail {
     return n >= 4096 && threads > 1 ? std::size_t(threads) : 1;
 }
 
+/// for_each_block's loop inside a parallel region that is already open: every thread of the
+/// team calls it once, with the same `shares` (set up for `blocks` items before the call), and
+/// each block runs once. No barrier at its end: a pass that reads its results needs one.
+template <class F>
+void for_each_block_of(thread_shares& shares, std::size_t n, std::size_t blocks, F&& f) {
+    if (blocks == 0) return;
+    const std::size_t size = (n + blocks - 1) / blocks;
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
+            const std::size_t first = std::min(n, std::size_t(b) * size);
+            f(std::size_t(b), first, std::min(n, first + size));
+        }
+}
+
 /// f(b, first, last) for each of `blocks` ranges [first, last) of consecutive items out of n
 /// (equal sizes, the last ones shorter or empty), on `threads` threads if `parallel` and there
 /// are several blocks. f must not throw.
 template <class F>
 void for_each_block(std::size_t n, std::size_t blocks, bool parallel, int threads, F&& f) {
     if (blocks == 0) return;
-    const std::size_t size = (n + blocks - 1) / blocks;
     const auto count = static_cast<std::ptrdiff_t>(blocks);
     thread_shares shares(count, threads, parallel && count > 1);
     GIMLET_OMP(parallel num_threads(shares.team()))
-    for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
-            const std::size_t first = std::min(n, std::size_t(b) * size);
-            f(std::size_t(b), first, std::min(n, first + size));
-        }
+    for_each_block_of(shares, n, blocks, f);
 }
 
 /// `cursor` holds blocks x buckets counts (block-major: cursor[b * buckets + k]); each becomes
