@@ -125,41 +125,61 @@ struct listed_times {
 template <class F>
 listed_times(std::vector<double>, std::size_t, F) -> listed_times<F>;
 
+// A word for the shell, single-quoted: any path, whatever its characters.
+std::string shell_word(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
 // The figures drawn while the run goes on: `plot.py --follow` reads each snapshot's index and
 // time as its map is written and draws the map from processor time the run leaves idle, and
-// draws the rest when the run ends (closes the pipe). Drawn after the run, the figures took 12 %
-// of the quickstart's run with outputs off (docs/performance.md, "The flagship's outputs").
+// draws the rest when the run ends (the line `end`; its input closed without it, by a run that
+// threw or was killed, it draws nothing more). Drawn after the run, the figures took 12 % of
+// the quickstart's run with outputs off (docs/performance.md, "The flagship's outputs").
 class plotter {
 public:
-    explicit plotter(const std::string& command) {
+    // command: the plotter's, its errors sent to log (removed at the end if empty).
+    plotter(const std::string& command, std::filesystem::path log) : log_(std::move(log)) {
         // A plotter that cannot start (no python3, no matplotlib) exits; writing to its pipe
-        // then fails with EPIPE rather than stopping the run with SIGPIPE.
+        // then fails with EPIPE rather than stopping the run with SIGPIPE. (For the whole
+        // process: with its standard output piped into a program that exits early, the run now
+        // goes on to its end and writes its files.)
         std::signal(SIGPIPE, SIG_IGN);
-        pipe_ = popen(command.c_str(), "w");
+        pipe_ = popen((command + " 2>" + shell_word(log_.string())).c_str(), "w");
+        failed_ = pipe_ == nullptr;
     }
     plotter(const plotter&) = delete;
     plotter& operator=(const plotter&) = delete;
-    // Left without finish() (the run threw): the plotter stops without drawing.
+    // Left without finish() (the run threw): the input closed without `end`, the plotter stops.
     ~plotter() {
-        if (pipe_) std::fputs("abort\n", pipe_), pclose(pipe_);
+        if (pipe_) pclose(pipe_), drop_empty_log();
     }
-    // A map written: its index and time after contact, as snapshots/times.csv has them, and
-    // whether it is the run's last.
+    // A map written: its index and time after contact (the values snapshots/times.csv holds),
+    // and whether it is the run's last.
     void map(std::size_t index, double after_contact_us, bool last) {
         if (pipe_ && (std::fprintf(pipe_, "%zu %.17g%s\n", index, after_contact_us, last ? " last" : "") < 0 ||
                       std::fflush(pipe_) != 0))
             failed_ = true;
     }
-    // Ends the run's part and waits for the figures; true if every one was drawn.
+    // The run has ended and its files are closed: waits for the figures; true if every one was
+    // drawn.
     bool finish() {
         if (!pipe_) return !failed_;
+        if (std::fputs("end\n", pipe_) < 0) failed_ = true;
         const int status = pclose(pipe_);
         pipe_ = nullptr;
         failed_ = failed_ || status != 0;
+        drop_empty_log();
         return !failed_;
     }
 
 private:
+    void drop_empty_log() const {
+        std::error_code ec;
+        if (std::filesystem::file_size(log_, ec) == 0 && !ec) std::filesystem::remove(log_, ec);
+    }
+    std::filesystem::path log_;
     FILE* pipe_ = nullptr;
     bool failed_ = false;
 };
@@ -471,15 +491,17 @@ int main(int argc, char** argv) try {
 
     std::string plot;  // the command that draws the figures after the run
     std::optional<plotter> figures;
+    const auto log = io.out / "plot.log";  // the plotter's errors
     if (figures_on) {
         // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
         const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
-        plot = python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" \"" + io.out.string() + "\"";
+        const std::string script = shell_word(std::string(GIMLET_EXAMPLE_DIR) + "/plot.py");
+        plot = python + " " + script + " " + shell_word(io.out.string());
         std::ostringstream cell;  // as summary.csv has it: the maps' particle spacing is half of it
         gimlet::io::exact_numbers(cell);
         cell << s.cell * 1e3;
-        figures.emplace(python + " \"" + GIMLET_EXAMPLE_DIR + "/plot.py\" --follow " + cell.str() + " \"" +
-                        io.out.string() + "\" 2>/dev/null");
+        std::filesystem::create_directories(io.out);
+        figures.emplace(python + " " + script + " --follow " + cell.str() + " " + shell_word(io.out.string()), log);
         io.figures = &*figures;
     }
 
@@ -493,7 +515,8 @@ int main(int argc, char** argv) try {
         std::printf("  figures: %s (series.png, map_*.png); ParaView: %s\n", io.out.string().c_str(),
                     (io.out / "snapshots" / "particles.pvd").string().c_str());
     else
-        std::printf("  (no figures: needs python3 with matplotlib; run %s)\n", plot.c_str());
+        std::printf("  (figures not drawn: needs python3 with matplotlib; its errors are in %s; run %s)\n",
+                    log.string().c_str(), plot.c_str());
     std::printf("  series: %s\n", (io.out / "series.csv").string().c_str());
     return rc;
 } catch (const std::exception& e) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Figures of one cavity_collapse run: python3 plot.py OUTPUT_DIR (cavity_collapse runs it as
-plot.py --follow CELL_MM OUTPUT_DIR, to draw the maps while the run goes on: follow()).
+plot.py --follow CELL_MM OUTPUT_DIR, to draw the maps while the run goes on: Follower).
 
 series.png: D, the relative wall velocity, the temperatures and the hot material against the
 time after the nominal first contact. hot_material.png: the largest mass over the run hotter
@@ -27,6 +27,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 # fifth larger, and encoding a third of the time it took, which was a fifth of the figures'
 # (docs/performance.md, "The flagship's outputs").
 PNG = {"pil_kwargs": {"compress_level": 1}}
+
+
+def save(fig, path, dpi):
+    """Writes fig to path as PNG through a temporary file in the same folder, renamed when
+    complete: a figure drawn while the run goes on, or one whose process is stopped, is never
+    seen half written."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        fig.savefig(temporary, format="png", dpi=dpi, **PNG)
+        os.replace(temporary, path)
+    finally:
+        if temporary.exists():
+            temporary.unlink()
 
 
 def read(path):
@@ -137,7 +150,7 @@ def plot_series(out):
         ax[3].legend(fontsize=7)
     ax[3].set_xlabel("time after contact (us)")
     fig.tight_layout()
-    fig.savefig(out / "series.png", dpi=110, **PNG)
+    save(fig, out / "series.png", 110)
     plt.close(fig)
 
 
@@ -157,7 +170,7 @@ def plot_hot_material(out):
         a.set_title(f"hot material, T_EP = {summary['bulk_shock_temperature_K'][0]:.1f} K", fontsize=9,
                     y=1.0)  # placed, not measured (plot_maps says why)
         fig.tight_layout()
-        fig.savefig(out / "hot_material.png", dpi=110, **PNG)
+        save(fig, out / "hot_material.png", 110)
         plt.close(fig)
 
 # The many-panel figures: the whole pair of blocks in pressure, the upper block (body 1) in
@@ -220,16 +233,23 @@ def plot_map(out, spacing, i, tc):
     panels = []
     for key, upper_only, *_ in PANELS:
         part = {k: col[m["body"] == 1] for k, col in m.items()} if upper_only else m
-        panels.append((raster(part, key, spacing), part[key]))
+        # A copy of the column: a view would keep every column of the map alive with it.
+        panels.append((raster(part, key, spacing), np.array(part[key])))
     whole = {key: image for (key, upper_only, *_), (image, _) in zip(PANELS, panels) if not upper_only}
     sides = [(whole[key] if key in whole else raster(m, key, spacing), colour_limits(m[key], lo))
              for key, _, _, lo in MAP_SIDES]
     keep = all(drawn is not None for drawn, _ in sides)  # else a figure of its own
     figure = KEPT_MAP_FIGURE if keep else {}
-    fig = map_figure(figure, sides, tc)
-    fig.savefig(out / f"map_{int(i):04d}.png", dpi=100, **PNG)
-    if not keep:
-        plt.close(fig)
+    try:
+        fig = map_figure(figure, sides, tc)
+        save(fig, out / f"map_{int(i):04d}.png", 100)
+    except BaseException:
+        keep = False  # a figure left half changed is not kept for the next map
+        raise
+    finally:
+        if not keep and figure:
+            plt.close(figure["fig"])
+            figure.clear()
     return panels
 
 
@@ -289,7 +309,7 @@ def plot_maps(out, times, panels, label, cmap, lo, name):
                             (rows * height + (rows - 1) * title) / fig_h])
         fig.colorbar(sc, cax=bar).set_label(label, fontsize=9)
         bar.tick_params(labelsize=8)
-    fig.savefig(out / name, dpi=90, **PNG)
+    save(fig, out / name, 90)
     plt.close(fig)
 
 
@@ -306,37 +326,48 @@ def lower_priority():
             pass
 
 
-def draw_while_running(out, spacing, jobs, results):
+def draw_while_running(out, spacing, jobs, results, parents_ends):
     """The child of --follow: asks its parent for a job, does it, and asks again (its reply is
     the next request), from idle processor time only. A job: a snapshot's map, whose panels it
     sends back, or, after the last map, one of the many-panel figures, which it draws if it drew
     every map itself. A figure that fails here is drawn again, and its error reported, at the end."""
     lower_priority()
+    # The parent's ends of the two pipes, copied by the fork: closed, so that if the parent
+    # dies the child reads the end of its jobs and exits rather than wait for ever.
+    # (multiprocessing has already pointed the child's standard input, the run's pipe, at
+    # /dev/null, so the run does not wait on the child either.)
+    for end in parents_ends:
+        end.close()
     panels = {}
-    results.send(("ready",))
-    for job in iter(jobs.recv, None):
-        reply = ("failed",)
-        try:
-            if job[0] == "map":
-                _, i, tc = job
-                panels[i] = plot_map(out, spacing, i, tc)
-                reply = ("map", i, panels[i])
-            elif len(job[2]["index"]) >= 2 and sorted(panels) == list(range(len(job[2]["index"]))):
-                # every map of the run, from the first, drawn here
-                _, k, times = job
-                _, _, label, cmap, lo, name = PANELS[k]
-                plot_maps(out, times, [panels[i][k] for i in times["index"]], label, cmap, lo, name)
-                reply = ("many-panel", k)
-        except Exception:  # noqa: BLE001 (drawn again, and reported, at the end)
-            pass
-        results.send(reply)
+    try:
+        results.send(("ready",))
+        for job in iter(jobs.recv, None):
+            reply = ("failed",)
+            try:
+                if job[0] == "map":
+                    _, i, tc = job
+                    panels[i] = plot_map(out, spacing, i, tc)
+                    reply = ("map", i, panels[i])
+                elif len(job[2]["index"]) >= 2 and sorted(panels) == list(range(len(job[2]["index"]))):
+                    # every map of the run, from the first, drawn here
+                    _, k, times = job
+                    _, _, label, cmap, lo, name = PANELS[k]
+                    plot_maps(out, times, [panels[i][k] for i in times["index"]], label, cmap, lo, name)
+                    reply = ("many-panel", k)
+            except Exception:  # noqa: BLE001 (drawn again, and reported, at the end)
+                pass
+            results.send(reply)
+    except (EOFError, OSError):  # the parent has gone (its pipes closed): so does the child
+        pass
 
 
 class Follower:
     """The figures of a run still going on (plot.py --follow). The run writes one line on this
     script's standard input after each snapshot's map, INDEX TIME_AFTER_CONTACT_US, with the
-    word `last` after the last map it will write, and closes the input when it ends (after a
-    line `abort` if it failed: then nothing is drawn). A child process at idle priority draws
+    word `last` after the last map it will write, and the line `end` when it has ended and its
+    files are complete. Its input closed without `end` (the run failed or was stopped), nothing
+    more is drawn: the child is stopped and the script exits with status 1. A child process at
+    idle priority draws
     the maps as they come, and the many-panel figures after the last, from processor time the
     run leaves idle. It takes one job at a time, so that at the run's end the jobs it has not
     started go to the figures drawn at full priority (draw()), while it finishes its own."""
@@ -345,7 +376,8 @@ class Follower:
         context = multiprocessing.get_context("fork")
         jobs, self.to_child = context.Pipe(duplex=False)
         self.from_child, results = context.Pipe(duplex=False)
-        self.child = context.Process(target=draw_while_running, args=(out, spacing, jobs, results), daemon=True)
+        self.child = context.Process(target=draw_while_running,
+                                     args=(out, spacing, jobs, results, (self.to_child, self.from_child)), daemon=True)
         self.child.start()
         jobs.close(), results.close()  # the child's ends: the parent sees the child's exit as EOF
         self.panels, self.many_panel = {}, set()  # the many-panel figures drawn: PANELS' indices
@@ -394,9 +426,8 @@ class Follower:
     def read(self, lines):
         """Hands the child each map the run reports; returns at the run's end."""
         for line in lines:
-            if line.strip() == "abort":  # the run failed: no figures
-                self.child.kill()
-                sys.exit(1)
+            if line.strip() == "end":
+                return
             i, tc, *last = line.split()
             self.times["index"].append(int(i))
             self.times["time_after_contact_us"].append(float(tc))
@@ -404,6 +435,9 @@ class Follower:
             if last:
                 for k in range(len(PANELS)):
                     self.add(("many-panel", k, {key: list(v) for key, v in self.times.items()}))
+        # No `end`: the run failed, or was stopped, and its files may be incomplete.
+        self.child.kill()
+        sys.exit(1)
 
     def stop(self):
         """The run is over: the child gets no more jobs. Returns the job it is doing, ("map",
@@ -415,8 +449,7 @@ class Follower:
             return self.current[:2] if self.current else None
 
     def finish(self, timeout):
-        """Waits for the child to finish its job, at most timeout seconds (at idle priority, on
-        a busy machine, it might wait long; then it is stopped, and its job drawn again)."""
+        """Waits for the child to finish its job, at most timeout seconds, then stops it."""
         self.child.join(timeout)
         if self.child.is_alive():
             self.child.kill()
@@ -468,9 +501,11 @@ def draw(out, spacing, follower=None):
         rest = first + [pool.submit(plot_series, out), pool.submit(plot_hot_material, out)]
         found = {i: result(done) for i, done in maps}
         if follower:
-            # The child's last job: 5 s is ten times the longest (a many-panel figure) on an idle
-            # machine.
-            follower.finish(timeout=5.0)
+            # The child's last job, once the pool's maps are done: on an idle machine it then
+            # has a core of its own, and its longest job (a many-panel figure) takes a third of
+            # a second; on a busy one, at idle priority, it may not run at all, so after 1 s it
+            # is stopped and its job drawn again.
+            follower.finish(timeout=1.0)
             if busy_map is not None and busy_map not in panels:  # stopped before it was done
                 found[busy_map] = result(pool.submit(plot_map, out, spacing, busy_map, dict(snapshots)[busy_map]))
         panels.update({i: p for i, p in found.items() if p is not None})
