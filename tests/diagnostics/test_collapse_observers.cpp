@@ -389,6 +389,47 @@ TEST_CASE("hot_spot: a workspace reused across calls, scenes and radii gives eac
         }
 }
 
+TEST_CASE("hot_spot: a call on a field of NaN leaves a workspace that gives the next call its own answer", "[diagnostics][threads]") {
+    // A field whose every temperature is NaN names no disc and skips the bins' passes, leaving
+    // the workspace's bins from the call before; the next call on a finite field, on 3 threads,
+    // must not read them.
+    std::vector<solver> sols = on_1_2_3_threads();
+    auto& sol = sols[2];
+    std::uint64_t state = 7;
+    for (std::size_t i = 0; i < sol.particles().size(); ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        sol.particles()[i].get<temperature>() = 300.0 + double((state >> 40) % 991) * 0.25;
+    }
+    std::vector<double> finite(sol.particles().size());
+    for (std::size_t i = 0; i < finite.size(); ++i) finite[i] = sol.particles()[i].get<temperature>();
+    gimlet::diagnostics::hot_spot_workspace<S::vector> work;
+    const auto before = gimlet::diagnostics::hot_spot(sol, 2e-3, -std::numeric_limits<double>::infinity(), work);
+    for (std::size_t i = 0; i < finite.size(); ++i)
+        sol.particles()[i].get<temperature>() = std::numeric_limits<double>::quiet_NaN();
+    const auto none = gimlet::diagnostics::hot_spot(sol, 0.5e-3, -std::numeric_limits<double>::infinity(), work);
+    CHECK(none.particles == 0);
+    CHECK(std::isnan(none.max_temperature));
+    for (std::size_t i = 0; i < finite.size(); ++i) sol.particles()[i].get<temperature>() = finite[i] + 1.0;
+    const auto reused = gimlet::diagnostics::hot_spot(sol, 0.75e-3, -std::numeric_limits<double>::infinity(), work);
+    const auto fresh = gimlet::diagnostics::hot_spot(sol, 0.75e-3);
+    CHECK(reused.temperature == fresh.temperature);
+    CHECK(reused.max_temperature == fresh.max_temperature);
+    CHECK(reused.centre == fresh.centre);
+    CHECK(reused.particles == fresh.particles);
+    CHECK(before.particles > 0);
+}
+
+TEST_CASE("hot_spot: a radius too small for its bins is refused by name, from inside the threads' region", "[diagnostics][threads]") {
+    // The bins are counted by one thread inside the parallel region; the error must reach the
+    // caller as an exception (one that left the region would end the program).
+    std::vector<solver> sols = on_1_2_3_threads();
+    for (auto& sol : sols) {
+        for (std::size_t i = 0; i < sol.particles().size(); ++i) sol.particles()[i].get<temperature>() = 300.0;
+        CHECK_THROWS_WITH(gimlet::diagnostics::hot_spot(sol, 1e-12),
+                          Catch::Matchers::Contains("hot_spot: radius") && Catch::Matchers::Contains("valid range"));
+    }
+}
+
 TEST_CASE("surface_gap, void_chord and hot_material: the same walls, speeds and sums on 1, 2 and 3 threads", "[diagnostics][threads]") {
     // The scene of the test above (7,000 and more particles: the strips are gathered on the
     // threads), each particle given a pseudo-random velocity, the same in every run: the walls'

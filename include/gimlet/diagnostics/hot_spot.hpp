@@ -15,8 +15,11 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,14 +96,11 @@ template <class Solver>
     const auto count_n = static_cast<std::ptrdiff_t>(n);
     const std::size_t blocks = detail::observer_blocks(n, threads);
 
-    // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
-    // The same pass finds each block's hottest particle: the first of its largest temperatures,
-    // NaN never taken (`none` where the block has only NaN).
-    // The passes run in one parallel region, with barriers between them: a region costs about
-    // ten barriers where idle threads sleep (OMP_WAIT_POLICY=passive), and five regions a call
-    // took as long as the second thread saved (docs/performance.md, "The figures drawn while
-    // the run goes on"). Each pass's shares are set up where its size is known: the first
-    // here, the others by one thread between the passes.
+    // The passes run in one parallel region (below), with barriers between them: where idle
+    // threads sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against
+    // 5.5 us on two threads), and five regions a call took as long as the second thread saved
+    // (docs/performance.md, "The hot spot's passes in one region"). Each pass's shares are set
+    // up where its size is known: the first here, the others by one thread between the passes.
     auto& block_lo = work.block_lo;
     auto& block_hi = work.block_hi;
     auto& block_hottest = work.block_hottest;
@@ -195,6 +195,10 @@ template <class Solver>
     best_disc best;
     std::size_t hottest = none, hottest_count = 0;
     double hottest_mean = 0, floor = 0;
+    // An exception must not leave the region (that would end the program): the serial step's,
+    // an allocation that fails or a radius too small for the bins, is kept and thrown after it.
+    std::exception_ptr failed;
+    bool go = false;  // a finite temperature, and the bins allocated: the passes after the first
     GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
     {
         // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
@@ -220,10 +224,18 @@ template <class Solver>
             for (const std::size_t h : block_hottest)
                 if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
             for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
-            for (int d = 0; d < dim; ++d) {
-                bins[d] = std::size_t(double(hi[d] - lo[d]) / radius) + 1;
-                total *= bins[d];
-            }
+            double cells = 1;  // the bins' count, checked before it is taken as an integer
+            for (int d = 0; d < dim; ++d) cells *= std::floor(double(hi[d] - lo[d]) / radius) + 1;
+            if (hottest != none && !(cells <= 0x1p40))
+                failed = std::make_exception_ptr(std::invalid_argument(
+                    "hot_spot: radius " + std::to_string(radius) + " m gives " + std::to_string(cells) +
+                    " bins over the particles' extent; valid range: at most 2^40 bins, a radius of at least the "
+                    "extent over 2^(40/dim)"));
+            else
+                for (int d = 0; d < dim; ++d) {
+                    bins[d] = std::size_t(double(hi[d] - lo[d]) / radius) + 1;
+                    total *= bins[d];
+                }
             // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
             // What a disc sums is copied in that order (position, mass, temperature), so that
             // a disc reads its bins' particles contiguously. Each block counts its particles
@@ -232,15 +244,19 @@ template <class Solver>
             // n / bins blocks, so that the counts take no more room than the particles.)
             sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
             merge_blocks = detail::observer_blocks(total * (sort_blocks - 1), threads);
-            if (hottest != none) {
-                cursor.assign(sort_blocks * total, 0);
-                block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
-                count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
-            }
+            if (hottest != none && !failed) try {
+                    cursor.assign(sort_blocks * total, 0);
+                    block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
+                    start.reserve(total + 1);  // so that block_offsets does not allocate
+                    count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                    copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                    merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
+                    go = true;
+                } catch (...) {
+                    failed = std::current_exception();
+                }
         }
-        if (hottest != none) {
+        if (go) {  // the same for every thread: written before the barrier that ends `single`
             detail::for_each_block_of(*count_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
                 std::size_t* count = cursor.data() + b * total;
                 double* t_max = block_max.data() + b * total;
@@ -253,10 +269,14 @@ template <class Solver>
             });
             GIMLET_OMP(barrier)
             GIMLET_OMP(single)
-            detail::block_offsets(cursor, sort_blocks, total, start);
+            {
+                detail::block_offsets(cursor, sort_blocks, total, start);
+            }
             // The copies in bin order, and each bin's hottest particle: the blocks' maxima (a
             // maximum, whatever the blocks), in the first block's entries, the bins split
-            // between the threads where there are many. The two passes touch different data.
+            // between the threads where there are many. No barrier between the two: the copies
+            // write `sorted_*` and each block's row of `cursor`, the merge only the first row
+            // of `block_max`, reading the others.
             detail::for_each_block_of(*copy_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
                 std::size_t* at = cursor.data() + b * total;
                 for (std::size_t i = first; i < last; ++i) {
@@ -306,6 +326,7 @@ template <class Solver>
             if (local.found && best.beaten_by(local.mean, local.index)) best = local;
         }
     }
+    if (failed) std::rethrow_exception(failed);
     if (hottest == none) return r;  // none, as the result's defaults say
     r.max_temperature = double(T[hottest]);
     r.temperature = best.mean;

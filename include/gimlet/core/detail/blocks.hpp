@@ -23,8 +23,10 @@ namespace gimlet::detail {
 }
 
 /// for_each_block's loop inside a parallel region that is already open: every thread of the
-/// team calls it once, with the same `shares` (set up for `blocks` items before the call), and
-/// each block runs once. No barrier at its end: a pass that reads its results needs one.
+/// team calls it once, with the same `shares` (set up for `blocks` items before the call, or by
+/// one thread inside the region followed by a barrier), and each block runs once, whatever the
+/// team's size. No barrier at its end: a pass that reads its results needs one. f must not
+/// throw (an exception cannot leave a parallel region).
 template <class F>
 void for_each_block_of(thread_shares& shares, std::size_t n, std::size_t blocks, F&& f) {
     if (blocks == 0) return;

@@ -99,8 +99,8 @@ public:
             // data), but much of one whose owner is stalled. The rest is read before it is
             // claimed: a read shares the counter's cache line, where a claim on a finished
             // share would take it from its owner's core for nothing. The claim is relaxed,
-            // since it orders nothing else (the region's closing barrier makes the items'
-            // outputs visible).
+            // since it orders nothing else (a barrier after the loop, the region's end or an
+            // explicit one, makes the items' outputs visible).
             const std::ptrdiff_t left = s.end - s.next.load(std::memory_order_relaxed);
             if (left <= 0) continue;
             const std::ptrdiff_t size = c.k == 0 ? std::clamp<std::ptrdiff_t>(left / 8, 1, 1024)
