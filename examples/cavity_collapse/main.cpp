@@ -510,13 +510,14 @@ int main(int argc, char** argv) try {
     // cavity_collapse.hpp), instead of six (3 contact laws x 2 temperatures).
     const int rc = s.contact == contact_kind::single ? run(s, io, gimlet::contact::single_field{})
                                                      : run(s, io, chosen_law(s.contact));
-    if (!figures_on) return rc;
+    if (!figures) return rc;
     if (figures->finish())
         std::printf("  figures: %s (series.png, map_*.png); ParaView: %s\n", io.out.string().c_str(),
                     (io.out / "snapshots" / "particles.pvd").string().c_str());
     else
-        std::printf("  (figures not drawn: needs python3 with matplotlib; its errors are in %s; run %s)\n",
-                    log.string().c_str(), plot.c_str());
+        std::printf("  (figures not drawn: needs python3 with matplotlib%s; run %s)\n",
+                    std::filesystem::exists(log) ? ("; its errors are in " + log.string()).c_str() : "",
+                    plot.c_str());
     std::printf("  series: %s\n", (io.out / "series.csv").string().c_str());
     return rc;
 } catch (const std::exception& e) {

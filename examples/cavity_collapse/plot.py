@@ -180,9 +180,9 @@ PANELS = (("pressure_MPa", False, "pressure (MPa)", "viridis", None, "maps_press
           ("temperature_K", True, "temperature (K)", "inferno", 300.0, "maps_temperature.png"))
 
 
-# A map's two sides: the column, the colour bar's label, colour map and lower limit.
-MAP_SIDES = (("pressure_MPa", "pressure (MPa)", "viridis", None),
-             ("temperature_K", "temperature (K)", "inferno", 300.0))
+# A map's two sides, the many-panel figures' quantities (every particle on both): the column,
+# the colour bar's label, colour map and lower limit.
+MAP_SIDES = tuple((key, label, cmap, lo) for key, _, label, cmap, lo, _ in PANELS)
 
 # This process's map figure, kept from one map to the next: building its axes, their ticks and
 # the colour bars was a third of a map's time. A map drawn on the kept figure is the same PNG

@@ -426,7 +426,7 @@ TEST_CASE("hot_spot: a radius too small for its bins is refused by name, from in
     for (auto& sol : sols) {
         for (std::size_t i = 0; i < sol.particles().size(); ++i) sol.particles()[i].get<temperature>() = 300.0;
         CHECK_THROWS_WITH(gimlet::diagnostics::hot_spot(sol, 1e-12),
-                          Catch::Matchers::Contains("hot_spot: radius") && Catch::Matchers::Contains("valid range"));
+                          Catch::Matchers::Contains("hot-spot radius (m) = 1e-12 is invalid") && Catch::Matchers::Contains("valid range"));
     }
 }
 

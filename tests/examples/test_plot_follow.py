@@ -126,7 +126,7 @@ def check(name, condition, detail=""):
     print(("ok   " if condition else "FAIL ") + name + (f" ({detail})" if detail and not condition else ""))
 
 
-def every_figure(out, snapshots):
+def every_figure(snapshots):
     want = {f"map_{i}" for i in range(snapshots)} | {"series", "hot_material"}
     if snapshots >= 2:
         want |= {name for *_, name in plot.PANELS}
@@ -137,7 +137,7 @@ def every_figure(out, snapshots):
 out = scene(4)
 follow(out, lines(range(4)), pause=0.3)
 got = drawn(out)
-check("every figure drawn", set(got) == every_figure(out, 4), f"{sorted(got)}")
+check("every figure drawn", set(got) == every_figure(4), f"{sorted(got)}")
 check("each drawn once when the child keeps up", all(n == 1 for n in got.values()), f"{got}")
 
 # 2. The child slow on its first map, which it holds when the run ends: stopped 1 s after the
@@ -147,32 +147,32 @@ SLOW.update({0: 30.0})
 seconds = follow(out, lines(range(3)), pause=0.3)
 SLOW.clear()
 got = drawn(out)
-check("a slow child's map drawn by the pool", set(got) == every_figure(out, 3), f"{sorted(got)}")
+check("a slow child's map drawn by the pool", set(got) == every_figure(3), f"{sorted(got)}")
 check("a slow child costs at most its grace", seconds < 5.0, f"draw() took {seconds:.1f} s")
 
 # 3. A restarted run: the maps before the restart were never sent; the pool draws them.
 out = scene(5)
 follow(out, lines([3, 4]), pause=0.2)
 got = drawn(out)
-check("a restart's earlier maps drawn", set(got) == every_figure(out, 5), f"{sorted(got)}")
+check("a restart's earlier maps drawn", set(got) == every_figure(5), f"{sorted(got)}")
 
 # 4. A run with periodic snapshots sends no `last`: the many-panel figures are drawn at the end.
 out = scene(3)
 follow(out, lines(range(3), last=False), pause=0.2)
-check("no `last`: every figure drawn", set(drawn(out)) == every_figure(out, 3), f"{sorted(drawn(out))}")
+check("no `last`: every figure drawn", set(drawn(out)) == every_figure(3), f"{sorted(drawn(out))}")
 
 # 5. A map that fails in the child is drawn again by the pool, the maps after it too.
 out = scene(4)
 FAIL_IN_CHILD.add(1)
 follow(out, lines(range(4)), pause=0.2)
 FAIL_IN_CHILD.clear()
-check("a map the child failed on drawn", set(drawn(out)) == every_figure(out, 4), f"{sorted(drawn(out))}")
+check("a map the child failed on drawn", set(drawn(out)) == every_figure(4), f"{sorted(drawn(out))}")
 
 # 6. No snapshot, and one: series and hot material (no many-panel figure of one snapshot).
 for n in (0, 1):
     out = scene(n)
     follow(out, lines(list(range(n))) if n else ["end\n"])
-    check(f"{n} snapshot(s): its figures", set(drawn(out)) == every_figure(out, n), f"{sorted(drawn(out))}")
+    check(f"{n} snapshot(s): its figures", set(drawn(out)) == every_figure(n), f"{sorted(drawn(out))}")
 
 # 7. A run that ends without `end` (it threw, or was killed): nothing more is drawn, status 1.
 out = scene(3)

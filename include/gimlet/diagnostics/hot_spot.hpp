@@ -18,8 +18,6 @@
 #include <exception>
 #include <limits>
 #include <optional>
-#include <stdexcept>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -196,7 +194,7 @@ template <class Solver>
     std::size_t hottest = none, hottest_count = 0;
     double hottest_mean = 0, floor = 0;
     // An exception must not leave the region (that would end the program): the serial step's,
-    // an allocation that fails or a radius too small for the bins, is kept and thrown after it.
+    // a radius too small for the bins or an allocation that fails, is kept and thrown after it.
     std::exception_ptr failed;
     bool go = false;  // a finite temperature, and the bins allocated: the passes after the first
     GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
@@ -224,18 +222,14 @@ template <class Solver>
             for (const std::size_t h : block_hottest)
                 if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
             for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
-            double cells = 1;  // the bins' count, checked before it is taken as an integer
-            for (int d = 0; d < dim; ++d) cells *= std::floor(double(hi[d] - lo[d]) / radius) + 1;
-            if (hottest != none && !(cells <= 0x1p40))
-                failed = std::make_exception_ptr(std::invalid_argument(
-                    "hot_spot: radius " + std::to_string(radius) + " m gives " + std::to_string(cells) +
-                    " bins over the particles' extent; valid range: at most 2^40 bins, a radius of at least the "
-                    "extent over 2^(40/dim)"));
-            else
-                for (int d = 0; d < dim; ++d) {
-                    bins[d] = std::size_t(double(hi[d] - lo[d]) / radius) + 1;
-                    total *= bins[d];
-                }
+            // The bins per axis, counted in double first: at most 2^40 in all, so that the
+            // count and the arrays it sizes do not overflow.
+            std::array<double, dim> per_axis{};
+            double cells = 1;
+            for (int d = 0; d < dim; ++d) cells *= per_axis[d] = std::floor(double(hi[d] - lo[d]) / radius) + 1;
+            const bool countable = cells <= 0x1p40;  // false for NaN too
+            if (countable)
+                for (int d = 0; d < dim; ++d) bins[d] = std::size_t(per_axis[d]), total *= bins[d];
             // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
             // What a disc sums is copied in that order (position, mass, temperature), so that
             // a disc reads its bins' particles contiguously. Each block counts its particles
@@ -244,7 +238,9 @@ template <class Solver>
             // n / bins blocks, so that the counts take no more room than the particles.)
             sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
             merge_blocks = detail::observer_blocks(total * (sort_blocks - 1), threads);
-            if (hottest != none && !failed) try {
+            if (hottest != none) try {
+                    require(countable, "hot-spot radius (m)", radius,
+                            "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
                     cursor.assign(sort_blocks * total, 0);
                     block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
                     start.reserve(total + 1);  // so that block_offsets does not allocate
