@@ -116,6 +116,42 @@ TEST_CASE("isentrope temperature: the reference isentrope is the EOS's own, on a
     }
 }
 
+TEST_CASE("isentrope temperature: the update's tabulated T_s is T0 J^-Gamma to 3e-11, on and off the table",
+          "[thermal][verification]") {
+    // The particle update interpolates T_s in the reference table's cell: cubic Hermite in
+    // x = ln(J - J_sing) with exact slopes, whose error is at most dx^4 / 384 times the fourth
+    // x-derivative of T_s = T0 J^-Gamma. That derivative is below 20 T_s here (Gamma = 1.1; each
+    // x-derivative brings a factor (J - J_sing) / J < 1), and dx = ln(100) / 1024: a bound of
+    // 2e-11 of T_s. temperature() computes T_s exactly, so the two differ only by that.
+    driven_point<gimlet::thermal::isentrope_temperature> pt(make_thermal());
+    const auto& th = pt.mat.thermal;
+    const double j_sing = 1 - 1 / s;
+    double worst = 0;
+    auto check = [&](double j, double heat) {
+        const double e_th = th.reference_energy(j) + cv * heat;
+        gimlet::point_step<double> st;
+        st.J = j;
+        pt.p().get<gimlet::fields::specific_internal_energy>() = e_th;
+        th.update(st, 0.0, pt.p());
+        const double want = th.temperature(j, e_th), got = pt.T();
+        worst = std::max(worst, std::abs(got - want) / want);
+        return std::abs(got - want) <= 3e-11 * want;
+    };
+    // Every cell of the table, at 7 points each, from the compressed end (1 - s eta = 0.01)
+    // to J = 3, then states off it at both ends (T_s exact there).
+    const double x0 = std::log(0.01 / s), x3 = std::log(3.0 - j_sing);
+    const int points = 7 * 1024 * 2;
+    int bad = 0;
+    for (int k = 0; k <= points; ++k) {
+        const double j = j_sing + std::exp(x0 + (x3 - x0) * k / points);
+        bad += !check(j, 0.0) + !check(j, 500.0);
+    }
+    for (const double j : {j_sing + 0.004 / s, 3.5, 10.0}) bad += !check(j, 300.0);
+    INFO("worst relative difference " << worst);
+    CHECK(bad == 0);
+    CHECK(worst > 0);  // the update does interpolate (an exact T_s would read 0 everywhere)
+}
+
 TEST_CASE("isentrope temperature: on the Hugoniot it is the Walsh-Christian temperature", "[thermal][verification]") {
     // T(V, e_H(V)) against thermal::hugoniot_heating's integration of dT/dV along the Hugoniot
     // from T0 (PHYSICS of both: T ds = c_v dT + Gamma c_v T / V dV, de_H = T ds - P_H dV), in

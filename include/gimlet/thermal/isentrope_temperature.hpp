@@ -46,7 +46,8 @@ namespace gimlet::thermal {
 /// The reference curve is tabulated from 1 - s eta = 0.01 in compression (beyond the EOS's stop at
 /// 0.05) to J = 3 in expansion, uniformly in ln(J - J_1/s) (J_1/s = 1 - 1/s, the singular volume),
 /// with cubic Hermite interpolation between nodes; a state outside the table is integrated
-/// directly. The table is shared between copies.
+/// directly. The particle update takes T_s from the same table, interpolated in the same cell;
+/// isentrope() and temperature() compute it exactly. The table is shared between copies.
 class isentrope_temperature {
 public:
     static constexpr bool enabled = true;
@@ -76,13 +77,18 @@ public:
     }
 
     /// T from the end-of-step state. `dissipated` (plastic work) is already in e: not added again.
+    /// T_s(J) comes from the table with e_s(J), interpolated as e_s is (within 2e-11 of T0 J^-Gamma
+    /// relative; tests/thermal/test_isentrope_temperature.cpp), which spares a `pow` per particle
+    /// and step.
     template <class Real, class P>
     GIMLET_INLINE void update(const point_step<Real>& st, Real /*dissipated*/, const P& p) const {
         const double j = double(st.J);
         const double e_th = double(p.template get<fields::specific_internal_energy>()) - double(st.shear_energy);
-        const double below = reference_energy(j, p, st.step, st.time) - e_th;
+        if (!(j > j_sing())) beyond_singularity(j, p, st.step, st.time);
+        const reference_state ref = table_->both(*this, j);
+        const double below = ref.energy - e_th;
         if (below > cv_ * cold_) too_cold(j, e_th, below, p, st.step, st.time);
-        p.template get<fields::temperature>() = Real(isentrope(j) - below / cv_);
+        p.template get<fields::temperature>() = Real(ref.temperature - below / cv_);
     }
 
     /// T_s(J) = T0 J^-Gamma, the reference isentrope's temperature (K).
@@ -117,21 +123,49 @@ public:
     [[nodiscard]] double cold_tolerance() const noexcept { return cold_; }
 
 private:
-    /// The tabulated reference energy: nodes uniform in x = ln(J - J_sing).
+    /// e_s(J) and T_s(J) at one J.
+    struct reference_state {
+        double energy, temperature;
+    };
+
+    /// The tabulated reference isentrope: nodes uniform in x = ln(J - J_sing).
     struct table {
         double x0 = 0, dx = 0;
-        std::vector<double> e, de_dx;  ///< e_s and de_s/dx at the nodes
+        std::vector<double> e, de_dx;    ///< e_s and de_s/dx at the nodes
+        std::vector<double> ts, dts_dx;  ///< T_s and dT_s/dx at the nodes
+
+        // Cubic Hermite on [x_k, x_k+1] with the exact slopes, at u = (x - x0) / dx in
+        // [0, nodes - 1): the node k and the four basis values.
+        struct place {
+            std::size_t k;
+            double h00, h10, h01, h11;
+        };
+        GIMLET_INLINE static place hermite(double u) {
+            const auto k = static_cast<std::size_t>(u);
+            const double t = u - double(k), t2 = t * t, t3 = t2 * t;
+            return {k, 2 * t3 - 3 * t2 + 1, t3 - 2 * t2 + t, -2 * t3 + 3 * t2, t3 - t2};
+        }
+        GIMLET_INLINE double energy(const place& h) const {
+            return h.h00 * e[h.k] + h.h10 * dx * de_dx[h.k] + h.h01 * e[h.k + 1] + h.h11 * dx * de_dx[h.k + 1];
+        }
 
         GIMLET_INLINE double at(const isentrope_temperature& th, double j) const {
             const double x = std::log(j - th.j_sing());
             const double u = (x - x0) / dx;
             if (!(u >= 0.0)) return th.direct(j, 0);
             if (!(u < double(e.size() - 1))) return th.direct(j, e.size() - 1);
-            const auto k = static_cast<std::size_t>(u);
-            const double t = u - double(k), t2 = t * t, t3 = t2 * t;
-            // Cubic Hermite on [x_k, x_k+1] with the exact slopes.
-            return (2 * t3 - 3 * t2 + 1) * e[k] + (t3 - 2 * t2 + t) * dx * de_dx[k] + (-2 * t3 + 3 * t2) * e[k + 1] +
-                   (t3 - t2) * dx * de_dx[k + 1];
+            return energy(hermite(u));
+        }
+
+        // e_s as at() gives it (the same operations, so the same value) and T_s interpolated in
+        // the same cell; off the table, T_s exactly.
+        GIMLET_INLINE reference_state both(const isentrope_temperature& th, double j) const {
+            const double x = std::log(j - th.j_sing());
+            const double u = (x - x0) / dx;
+            if (!(u >= 0.0)) return {th.direct(j, 0), th.isentrope(j)};
+            if (!(u < double(e.size() - 1))) return {th.direct(j, e.size() - 1), th.isentrope(j)};
+            const place h = hermite(u);
+            return {energy(h), h.h00 * ts[h.k] + h.h10 * dx * dts_dx[h.k] + h.h01 * ts[h.k + 1] + h.h11 * dx * dts_dx[h.k + 1]};
         }
     };
 
@@ -193,6 +227,8 @@ private:
         const auto nodes = k1 + static_cast<std::size_t>(std::ceil((std::log(table_top - j_sing()) - x1) / t.dx)) + 1;
         t.e.resize(nodes);
         t.de_dx.resize(nodes);
+        t.ts.resize(nodes);
+        t.dts_dx.resize(nodes);
         auto j_at = [&](std::size_t k) { return k == k1 ? 1.0 : j_sing() + std::exp(t.x0 + t.dx * double(k)); };
         // Outwards from J = 1 node by node: I(J) = int_1^J g.
         std::vector<double> cumulative(nodes);
@@ -206,15 +242,13 @@ private:
             // de_s/dJ = -P(J, e_s) / rho0 on the isentrope, and dJ/dx = J - J_sing.
             const double p = hugoniot_pressure(j) + gamma_ * rho0_ / j * (es - hugoniot_energy(j));
             t.de_dx[k] = -p / rho0_ * (j - j_sing());
+            // T_s = T0 J^-Gamma: dT_s/dJ = -Gamma T_s / J.
+            t.ts[k] = isentrope(j);
+            t.dts_dx[k] = -gamma_ * t.ts[k] / j * (j - j_sing());
         }
         return t;
     }
 
-    template <class P>
-    [[nodiscard]] GIMLET_INLINE double reference_energy(double j, const P& p, std::size_t step, double time) const {
-        if (!(j > j_sing())) beyond_singularity(j, p, step, time);
-        return table_->at(*this, j);
-    }
 
     // The messages of update's two checks, out of line (GIMLET_COLD).
     template <class P>
