@@ -154,24 +154,21 @@ private:
             return h.h00 * ts[h.k] + h.h10 * dx * dts_dx[h.k] + h.h01 * ts[h.k + 1] + h.h11 * dx * dts_dx[h.k + 1];
         }
 
-        GIMLET_INLINE double at(const isentrope_temperature& th, double j) const {
-            const double x = std::log(j - th.j_sing());
-            const double u = (x - x0) / dx;
-            if (!(u >= 0.0)) return th.direct(j, 0);
-            if (!(u < double(e.size() - 1))) return th.direct(j, e.size() - 1);
-            return energy(hermite(u));
-        }
-
-        // e_s as at() gives it (the same operations, so the same value) and T_s interpolated in
-        // the same cell; off the table, T_s exactly.
-        GIMLET_INLINE reference_state both(const isentrope_temperature& th, double j) const {
-            const double x = std::log(j - th.j_sing());
-            const double u = (x - x0) / dx;
-            if (!(u >= 0.0)) return {th.direct(j, 0), th.isentrope(j)};
-            if (!(u < double(e.size() - 1))) return {th.direct(j, e.size() - 1), th.isentrope(j)};
+        // e_s at J, and with Temperature T_s too (interpolated in the same cell; off the table,
+        // e_s integrated directly and T_s exactly). e_s is the same value either way.
+        template <bool Temperature>
+        GIMLET_INLINE reference_state lookup(const isentrope_temperature& th, double j) const {
+            const double u = (std::log(j - th.j_sing()) - x0) / dx;
+            auto off = [&](std::size_t k) -> reference_state {
+                return {th.direct(j, k), Temperature ? th.isentrope(j) : 0.0};
+            };
+            if (!(u >= 0.0)) return off(0);
+            if (!(u < double(e.size() - 1))) return off(e.size() - 1);
             const place h = hermite(u);
-            return {energy(h), temperature(h)};
+            return {energy(h), Temperature ? temperature(h) : 0.0};
         }
+        GIMLET_INLINE double at(const isentrope_temperature& th, double j) const { return lookup<false>(th, j).energy; }
+        GIMLET_INLINE reference_state both(const isentrope_temperature& th, double j) const { return lookup<true>(th, j); }
     };
 
     static constexpr std::size_t compressed_nodes = 1024;  ///< nodes from the compressed end to J = 1
