@@ -129,16 +129,20 @@ struct self_contact {
         // own entries; pass 1 below computes them (it does not read them), and the later passes
         // read them.
         current_.resize(n * std::size_t(dim));
-        auto current_normal = [&](std::size_t i) {
-            vector c = vector::Zero();
-            const real a = normal0[i].norm();
-            if (a > 0) {
-                const matrix inv_t = F[i].inverse().transpose();
-                c = inv_t * normal0[i];
-                const real len = c.norm();
-                c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
-            }
+        // Only particles with a normal (a > 0) have their entries written or read: a bulk
+        // particle's entries are never looked at, so the passes skip it after one test.
+        auto current_normal = [&](std::size_t i, real a) {
+            const matrix inv_t = F[i].inverse().transpose();
+            vector c = inv_t * normal0[i];
+            const real len = c.norm();
+            c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
             for (int d = 0; d < dim; ++d) current_[i * std::size_t(dim) + std::size_t(d)] = double(c[d]);
+        };
+        // |n0| where the particle has a normal, 0 in the bulk: the test needs no square root
+        // (norm() is the root of squaredNorm(), so the two are zero together).
+        auto normal_size = [&](std::size_t i) {
+            const real a2 = normal0[i].squaredNorm();
+            return a2 > 0 ? real(std::sqrt(a2)) : real(0);
         };
         auto current = [&](std::size_t i) {
             vector c;
@@ -157,9 +161,9 @@ struct self_contact {
         // body (largest S m |n|, ties to the lower particle index, so the choice does not depend
         // on the order of the sum).
         view.for_each_particle_by_slab([&](std::size_t i) {
-            current_normal(i);
-            const real a = normal0[i].norm();
+            const real a = normal_size(i);
             if (!(a > 0)) return;
+            current_normal(i, a);
             const std::size_t base = std::size_t(body[i]) * nodes;
             view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
                 if (!(w > 0)) return;
@@ -170,7 +174,7 @@ struct self_contact {
         });
         // Pass 2: the fronts of the particles facing along e and against it.
         view.for_each_particle_by_slab([&](std::size_t i) {
-            const real a = normal0[i].norm();
+            const real a = normal_size(i);
             if (!(a > 0)) return;
             const vector c = current(i) / a;
             const std::size_t base = std::size_t(body[i]) * nodes;
