@@ -196,6 +196,12 @@ public:
         }
         return x;
     }
+    /// Position along axis d of the nodes whose storage offset along d is `storage` (a multiple
+    /// of stride(d), as axis_offsets gives): node_position's component d, to the bit, for every
+    /// node with that offset, from one division instead of two per axis and node.
+    [[nodiscard]] real axis_position(int d, int storage) const noexcept {
+        return spec_.lower[d] + real(storage / stride_[d] - offset_[d]) * spec_.cell;
+    }
     /// x minus the position of the node stored at `index`, the nearest image along periodic axes.
     [[nodiscard]] vector offset_from_node(std::size_t index, const vector& x) const {
         vector d = x - node_position(index);

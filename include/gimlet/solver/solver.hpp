@@ -520,8 +520,9 @@ private:
                 const auto p = particles_[i];
                 std::size_t j = 0;
                 bool ok = true;
-                stencils_[i].for_each([&](std::size_t node, real, const vector&) {
-                    const std::size_t side = partition_.side(std::as_const(p), node, grid_.node_position(node));
+                stencils_[i].for_each_node_position(grid_, [&](std::size_t node, const vector& at) {
+                    assert(at == grid_.node_position(node));
+                    const std::size_t side = partition_.side(std::as_const(p), node, at);
                     ok = ok && side < fields_per_body;
                     sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
                 });
