@@ -204,7 +204,12 @@ public:
     }
     /// x minus the position of the node stored at `index`, the nearest image along periodic axes.
     [[nodiscard]] vector offset_from_node(std::size_t index, const vector& x) const {
-        vector d = x - node_position(index);
+        return offset_from(x, node_position(index));
+    }
+    /// x minus a node's position `node_at` (node_position, or stencil::for_each_node_position's),
+    /// the nearest image along periodic axes.
+    [[nodiscard]] vector offset_from(const vector& x, const vector& node_at) const {
+        vector d = x - node_at;
         for (int a = 0; a < dim; ++a) {
             if (!periodic_[a]) continue;
             const real len = spec_.upper[a] - spec_.lower[a];

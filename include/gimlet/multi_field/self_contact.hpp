@@ -172,19 +172,33 @@ struct self_contact {
                 if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
             });
         });
-        // Pass 2: the fronts of the particles facing along e and against it.
+        // The reference direction e of each node and body that has one, normalised once here
+        // rather than at every particle that reads it below.
+        unit_.resize(entries * std::size_t(dim));
+        view.for_each_index(entries, [&](std::size_t e) {
+            if (best_particle_[e] == std::numeric_limits<std::size_t>::max()) return;
+            const vector ref = current(best_particle_[e]).normalized();
+            for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+        });
+        auto unit = [&](std::size_t e) {
+            vector ref;
+            for (int d = 0; d < dim; ++d) ref[d] = real(unit_[e * std::size_t(dim) + std::size_t(d)]);
+            return ref;
+        };
+        // Pass 2: the fronts of the particles facing along e and against it. (The nodes'
+        // positions from the stencil, as grid::node_position gives them.)
         view.for_each_particle_by_slab([&](std::size_t i) {
             const real a = normal_size(i);
             if (!(a > 0)) return;
             const vector c = current(i) / a;
             const std::size_t base = std::size_t(body[i]) * nodes;
             const vector x = ps.template column<fields::position>()[i];
-            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
+            view.stencils[i].for_each_node_position(view.grid, [&](std::size_t node, real w, const vector& at) {
                 if (!(w > 0)) return;
                 const std::size_t e = base + node;
-                const vector ref = current(best_particle_[e]).normalized();
+                const vector ref = unit(e);
                 const double facing = double(c.dot(ref));
-                const double along = double(view.grid.offset_from_node(node, x).dot(ref));
+                const double along = double(view.grid.offset_from(x, at).dot(ref));
                 if (facing > 0.5) front_along_[e] = std::max(front_along_[e], along);
                 if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
             });
@@ -206,18 +220,29 @@ struct self_contact {
         // the middle half between the fronts means material there, as just beyond the tip of a
         // slot, where both faces reach a node of the intact material ahead: no split.
         if (any) {
-            view.for_each_particle_by_slab([&](std::size_t i) {
+            auto empty_gap = [&](std::size_t i) {
                 const std::size_t base = std::size_t(body[i]) * nodes;
                 const vector x = ps.template column<fields::position>()[i];
                 view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
                     const std::size_t e = base + node;
                     if (!(w > 0) || split_[e] != 1) return;
                     const double quarter = 0.25 * (front_against_[e] - front_along_[e]);
-                    const vector ref = current(best_particle_[e]).normalized();
+                    const vector ref = unit(e);
                     const double along = double(view.grid.offset_from_node(node, x).dot(ref));
                     if (along > front_along_[e] + quarter && along < front_against_[e] - quarter) split_[e] = 2;
                 });
-            });
+            };
+            // Only the particles whose stencils can reach a candidate's row of nodes (of the last
+            // axis) have anything to do here, where the view can skip the others (the solver's
+            // can: partition_view).
+            if constexpr (requires { view.for_each_particle_by_slab(candidate_rows_, empty_gap); }) {
+                candidate_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
+                for (std::size_t e = 0; e < entries; ++e)
+                    if (split_[e] == 1) candidate_rows_[std::size_t(view.grid.layer(e % nodes))] = 1;
+                view.for_each_particle_by_slab(candidate_rows_, empty_gap);
+            } else {
+                view.for_each_particle_by_slab(empty_gap);
+            }
         }
         // The split nodes' planes (without a candidate every entry is 0 already, mid_ and
         // reference_ too).
@@ -230,8 +255,7 @@ struct self_contact {
                 }
                 split_count.fetch_add(1, std::memory_order_relaxed);
                 mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
-                const vector ref = current(best_particle_[e]).normalized();
-                for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+                for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = unit_[e * std::size_t(dim) + std::size_t(d)];
             });
         }
         split_nodes_ = split_count.load();
@@ -271,9 +295,9 @@ struct self_contact {
 private:
     std::size_t nodes_ = 0, split_nodes_ = 0;
     int dim_ = 0;
-    std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, grid_length_;
+    std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, unit_, grid_length_;
     std::vector<std::size_t> best_particle_;
-    std::vector<std::uint8_t> split_;
+    std::vector<std::uint8_t> split_, candidate_rows_;
 };
 
 }  // namespace multi_field

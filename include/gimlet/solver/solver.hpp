@@ -473,6 +473,10 @@ private:
         solver_core* self;
         template <class F>
         void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
+        template <class F>
+        void operator()(const std::vector<std::uint8_t>& rows, F&& f) const {
+            self->for_each_particle_by_slab_reaching(rows, std::forward<F>(f));
+        }
     };
     struct index_caller {
         solver_core* self;
@@ -520,7 +524,7 @@ private:
                 const auto p = particles_[i];
                 std::size_t j = 0;
                 bool ok = true;
-                stencils_[i].for_each_node_position(grid_, [&](std::size_t node, const vector& at) {
+                stencils_[i].for_each_node_position(grid_, [&](std::size_t node, real, const vector& at) {
                     assert(at == grid_.node_position(node));
                     const std::size_t side = partition_.side(std::as_const(p), node, at);
                     ok = ok && side < fields_per_body;

@@ -79,9 +79,10 @@ struct stencil {
         }
     }
 
-    /// Call f(node, position) for every node of the stencil, in for_each's order, where
-    /// position is g.node_position(node) to the bit: each axis's W positions are formed once
-    /// (grid::axis_position) instead of dividing the flat index twice per axis at every node.
+    /// Call f(node, weight, position) for every node of the stencil, in for_each's order (and
+    /// with its weights), where position is g.node_position(node) to the bit: each axis's W
+    /// positions are formed once (grid::axis_position) instead of dividing the flat index twice
+    /// per axis at every node.
     template <class F>
     void for_each_node_position(const grid<S>& g, F&& f) const {
         std::array<std::array<real, W>, dim> at;
@@ -89,12 +90,14 @@ struct stencil {
             for (int a = 0; a < W; ++a) at[d][a] = g.axis_position(d, offset[d][a]);
         if constexpr (dim == 2) {
             for (int b = 0; b < W; ++b)
-                for (int a = 0; a < W; ++a) f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), vector(at[0][a], at[1][b]));
+                for (int a = 0; a < W; ++a)
+                    f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b], vector(at[0][a], at[1][b]));
         } else {
             for (int c = 0; c < W; ++c)
                 for (int b = 0; b < W; ++b)
                     for (int a = 0; a < W; ++a)
-                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]), vector(at[0][a], at[1][b], at[2][c]));
+                        f(static_cast<std::size_t>(offset[0][a] + offset[1][b] + offset[2][c]), w[0][a] * (w[1][b] * w[2][c]),
+                          vector(at[0][a], at[1][b], at[2][c]));
         }
     }
 
