@@ -16,9 +16,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -74,6 +77,27 @@ struct by_node_side {
     }
 };
 
+// by_node_side, naming the rows of nodes where it may answer 1 (split_rows(), refreshed in
+// prepare): the solver asks side() only of the particles whose stencils can reach such a row.
+// `extra` rows too many (a wrong size) must be refused.
+template <std::size_t extra>
+struct by_node_side_rows : by_node_side {
+    template <class View>
+    void prepare(const View& view) {
+        const auto& g = view.grid;
+        rows.assign(std::size_t(g.nodes(1)) + extra, 0);
+        for (int r = 0; r < g.nodes(1); ++r) rows[std::size_t(r)] = g.axis_position(1, r * g.stride(1)) >= y_mid;
+    }
+    [[nodiscard]] const std::vector<std::uint8_t>& split_rows() const noexcept { return rows; }
+    template <class P, class V>
+    [[nodiscard]] std::size_t side(const P& p, std::size_t node, const V& node_position) const {
+        calls->fetch_add(1, std::memory_order_relaxed);
+        return by_node_side::side(p, node, node_position);
+    }
+    std::vector<std::uint8_t> rows;
+    std::shared_ptr<std::atomic<std::uint64_t>> calls = std::make_shared<std::atomic<std::uint64_t>>(0);  // side()'s
+};
+
 // Splits each body by the particle's own tag: the two halves meet, as two bodies would.
 struct by_tag {
     using required_fields = gimlet::field_list<half>;
@@ -95,7 +119,7 @@ struct broken {
 };
 
 static_assert(multi_field::Partition<multi_field::by_body> && multi_field::Partition<by_node_side> &&
-              multi_field::Partition<by_tag>);
+              multi_field::Partition<by_tag> && multi_field::Partition<by_node_side_rows<0>>);
 struct no_side {
     using required_fields = gimlet::field_list<>;
     static constexpr std::size_t fields_per_body = 2;
@@ -234,5 +258,44 @@ TEST_CASE("a partition that chooses a field out of range stops the run, naming t
         CHECK(what.find("particle") != std::string::npos);
         CHECK(what.find("outside [0, 2)") != std::string::npos);
         CHECK(what.find("step 0") != std::string::npos);
+    }
+}
+
+TEST_CASE("a partition that names its split rows is asked only near them, with the same results",
+          "[multi_field][verification]") {
+    // The rows flag the upper block's nodes, which the lower block's particles mostly cannot
+    // reach: those particles take side 0 without being asked, as by_node_side would answer.
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, contact::distance, gimlet::field_list<>, by_node_side>
+        asked(blocks(false));
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, contact::distance, gimlet::field_list<>,
+                   by_node_side_rows<0>>
+        skipped(blocks(false));
+    set_approach(asked);
+    set_approach(skipped);
+    asked.run_until(t_end);
+    skipped.run_until(t_end);
+    CHECK(skipped.steps() == asked.steps());
+    require_same_particles(asked, skipped);
+    require_separated(skipped);
+    // Asked of fewer particles than every particle at every node of every step, and of some.
+    const std::uint64_t every = skipped.steps() * skipped.particles().size() * 9;
+    const std::uint64_t calls = skipped.partition().calls->load();
+    INFO(calls << " of " << every);
+    CHECK(calls > 0);
+    CHECK(calls < every * 3 / 4);
+}
+
+TEST_CASE("split rows of the wrong size are refused, naming them", "[multi_field][errors]") {
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, contact::distance, gimlet::field_list<>,
+                   by_node_side_rows<1>>
+        sol(blocks(false));
+    try {
+        sol.step();
+        FAIL("no error");
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        INFO(what);
+        CHECK(what.find("split_rows()") != std::string::npos);
+        CHECK(what.find("one flag per row of nodes") != std::string::npos);
     }
 }

@@ -39,6 +39,12 @@ namespace gimlet::multi_field {
 /// every side is 0 this step, so the solver need not ask `side` particle by particle; once a
 /// step has completed with it false, the grid's node passes skip every body's fields past the
 /// first while it stays false. Asked once a step (multi_field::check refuses a non-const one).
+/// A fourth, `const std::vector<std::uint8_t>& split_rows() const`, asked after `prepare` on a
+/// step that splits, names the rows of nodes along the last axis (grid::layer; one flag per
+/// row, grid.nodes(dim - 1) of them, or the step stops with an error naming it) that hold a node
+/// where `side` may answer other than 0: the solver then asks `side` only of the particles
+/// whose stencils can reach a flagged row, and puts every other particle in its body's first
+/// field.
 /// Particle indices are those of the store at the time of the call: the solver renumbers the
 /// particles when it sorts them (solver_options::sort_interval), so per-particle state belongs
 /// in `required_fields`, not in members indexed by particle.

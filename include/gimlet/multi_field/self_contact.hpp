@@ -119,6 +119,7 @@ struct self_contact {
         dim_ = dim;
         if (!enabled) {
             split_.assign(entries, 0);
+            split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
             return;
         }
         const auto& mass = ps.template column<fields::mass>();
@@ -259,6 +260,12 @@ struct self_contact {
             });
         }
         split_nodes_ = split_count.load();
+        // The rows of nodes (of the last axis) that hold a split node: the solver asks side()
+        // only of the particles whose stencils can reach one (split_rows()).
+        split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
+        if (split_nodes_ > 0)
+            for (std::size_t e = 0; e < entries; ++e)
+                if (split_[e]) split_rows_[std::size_t(view.grid.layer(e % nodes))] = 1;
         nodes_ = nodes;
         grid_length_.assign(std::size_t(dim), 0.0);
         for (int d = 0; d < dim; ++d) {
@@ -285,6 +292,10 @@ struct self_contact {
         return along < mid_[e] ? 0 : 1;
     }
 
+    /// The rows of nodes along the last axis (grid::layer) that hold a split node this step
+    /// (multi_field::Partition's optional split_rows()): side() is 0 at every other node.
+    [[nodiscard]] const std::vector<std::uint8_t>& split_rows() const noexcept { return split_rows_; }
+
     /// Nodes (times bodies) split in the last step: zero where no two surfaces of a body face
     /// each other.
     [[nodiscard]] std::size_t split_nodes() const noexcept { return split_nodes_; }
@@ -297,7 +308,7 @@ private:
     int dim_ = 0;
     std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, unit_, grid_length_;
     std::vector<std::size_t> best_particle_;
-    std::vector<std::uint8_t> split_, candidate_rows_;
+    std::vector<std::uint8_t> split_, candidate_rows_, split_rows_;
 };
 
 }  // namespace multi_field

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cmath>
@@ -515,23 +516,46 @@ private:
             std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
             return;
         }
+        // Particle i's sides; false if the partition answered out of range.
+        auto choose = [&](std::size_t i) {
+            const auto p = particles_[i];
+            std::size_t j = 0;
+            bool ok = true;
+            stencils_[i].for_each_node_position(grid_, [&](std::size_t node, real, const vector& at) {
+                assert(at == grid_.node_position(node));
+                const std::size_t side = partition_.side(std::as_const(p), node, at);
+                ok = ok && side < fields_per_body;
+                sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
+            });
+            return ok;
+        };
         std::ptrdiff_t first_bad = n;
-        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
-        GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
-        for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                const auto i = static_cast<std::size_t>(k);
-                const auto p = particles_[i];
-                std::size_t j = 0;
-                bool ok = true;
-                stencils_[i].for_each_node_position(grid_, [&](std::size_t node, real, const vector& at) {
-                    assert(at == grid_.node_position(node));
-                    const std::size_t side = partition_.side(std::as_const(p), node, at);
-                    ok = ok && side < fields_per_body;
-                    sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
-                });
-                if (!ok) first_bad = std::min(first_bad, k);
-            }
+        if constexpr (requires(const Part& q) {
+                          { q.split_rows() } -> std::convertible_to<const std::vector<std::uint8_t>&>;
+                      }) {
+            // A partition that names the rows of nodes holding a node it splits
+            // (multi_field::Partition's optional split_rows()) is asked only of the particles
+            // whose stencils can reach one; every other particle is in its body's first field.
+            const std::vector<std::uint8_t>& rows = partition_.split_rows();
+            const auto layers = static_cast<std::size_t>(grid_.nodes(dim - 1));
+            require(rows.size() == layers, "the partition's split_rows() size", double(rows.size()),
+                    std::to_string(layers) + ": one flag per row of nodes along the last axis");
+            std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
+            std::atomic<std::ptrdiff_t> bad{n};
+            for_each_particle_by_slab_reaching(rows, [&](std::size_t i) {
+                if (choose(i)) return;
+                auto k = static_cast<std::ptrdiff_t>(i), seen = bad.load(std::memory_order_relaxed);
+                while (k < seen && !bad.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
+                }
+            });
+            first_bad = bad.load();
+        } else {
+            detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+            GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
+                    if (!choose(static_cast<std::size_t>(k))) first_bad = std::min(first_bad, k);
+        }
         if (first_bad < n)
             fail(static_cast<std::size_t>(first_bad),
                  "the partition (multi_field::Partition::side) chose a field outside [0, " +
