@@ -154,9 +154,11 @@ struct self_contact {
         const double inf = std::numeric_limits<double>::infinity();
         best_.resize(entries), best_particle_.resize(entries);
         front_along_.resize(entries), front_against_.resize(entries);
+        unit_.resize(entries * std::size_t(dim)), unit_set_.resize(entries);
         view.for_each_index(entries, [&](std::size_t e) {
             best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
             front_along_[e] = -inf, front_against_[e] = inf;
+            unit_set_[e] = 0;
         });
         // Pass 1: each particle's current normal, and the reference direction of each node and
         // body (largest S m |n|, ties to the lower particle index, so the choice does not depend
@@ -173,16 +175,17 @@ struct self_contact {
                 if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
             });
         });
-        // The reference direction e of each node and body that has one, normalised once here
-        // rather than at every particle that reads it below.
-        unit_.resize(entries * std::size_t(dim));
-        view.for_each_index(entries, [&](std::size_t e) {
-            if (best_particle_[e] == std::numeric_limits<std::size_t>::max()) return;
-            const vector ref = current(best_particle_[e]).normalized();
-            for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
-        });
+        // The reference direction e of a node and body, normalised by the first particle of
+        // pass 2 that reaches it (pass 2 reaches every entry pass 1 set, and only those) rather
+        // than at every one: the passes by slab give one thread at a time a particle's nodes.
+        // Pass 3 and the split nodes' planes read it at the candidates, which pass 2 has reached.
         auto unit = [&](std::size_t e) {
             vector ref;
+            if (!unit_set_[e]) {
+                ref = current(best_particle_[e]).normalized();
+                for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+                unit_set_[e] = 1;
+            }
             for (int d = 0; d < dim; ++d) ref[d] = real(unit_[e * std::size_t(dim) + std::size_t(d)]);
             return ref;
         };
@@ -308,7 +311,7 @@ private:
     int dim_ = 0;
     std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, unit_, grid_length_;
     std::vector<std::size_t> best_particle_;
-    std::vector<std::uint8_t> split_, candidate_rows_, split_rows_;
+    std::vector<std::uint8_t> split_, candidate_rows_, split_rows_, unit_set_;
 };
 
 }  // namespace multi_field
