@@ -11,6 +11,9 @@
 //   TWO bodies of the same particles: contact between two fields of a body is contact between
 //   bodies, so nothing may change there either, and the law sees the pairs as self-contact
 //   (body_a == body_b, field_a != field_b).
+// A partition that names the rows of nodes it splits (split_rows()) gives the same particles to
+// the bit as without them, is asked side() of fewer particles, and rows of the wrong size are
+// refused.
 // uGIMP, 2 x 2 particles per cell, CFL 0.4 (the solver's defaults), every update scheme.
 #include <gimlet/gimlet.hpp>
 

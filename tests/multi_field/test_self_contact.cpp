@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 namespace {
@@ -454,17 +455,44 @@ TEST_CASE("self-contact in 3-D: one body's two slabs collide and part as two bod
 
 namespace {
 
-// self_contact without its optional splits() (hidden), so the solver asks side() of every
-// particle and sweeps every field slot of the grid every step.
+// self_contact without its optional splits() and split_rows() (hidden), and given a view
+// without the rows overload of for_each_particle_by_slab: the solver asks side() of every
+// particle and sweeps every field slot of the grid every step, and prepare's third pass visits
+// every particle.
+// A view's for_each_particle_by_slab without its rows overload.
+template <class BySlab>
+struct every_particle {
+    BySlab by_slab;
+    template <class F>
+    void operator()(F&& f) const {
+        by_slab(std::forward<F>(f));
+    }
+};
+
 struct self_contact_unhinted : self_contact {
     using self_contact::self_contact;
 
+    template <class View>
+    void prepare(const View& view) {
+        using by_slab = every_particle<std::remove_cvref_t<decltype(view.for_each_particle_by_slab)>>;
+        const gimlet::multi_field::partition_view<std::remove_reference_t<decltype(view.particles)>,
+                                                  std::remove_cvref_t<decltype(view.stencils)>,
+                                                  std::remove_cvref_t<decltype(view.grid)>, by_slab,
+                                                  std::remove_cvref_t<decltype(view.for_each_index)>>
+            plain{view.particles, view.stencils, view.grid, view.bodies, by_slab{view.for_each_particle_by_slab},
+                  view.for_each_index};
+        self_contact::prepare(plain);
+    }
+
 private:
+    using self_contact::split_rows;
     using self_contact::splits;
 };
 
 template <class P>
 concept says_splits = requires(const P& p) { p.splits(); };
+template <class P>
+concept names_rows = requires(const P& p) { p.split_rows(); };
 
 }  // namespace
 
@@ -477,6 +505,7 @@ concept says_splits = requires(const P& p) { p.splits(); };
 // of entries per slot.
 TEST_CASE("self-contact: skipping the unsplit second fields changes no result", "[multi_field][self_contact]") {
     static_assert(says_splits<self_contact> && !says_splits<self_contact_unhinted>);
+    static_assert(names_rows<self_contact> && !names_rows<self_contact_unhinted>);
     const double h = 1e-3, w = 4 * h, slab = 4 * h, gap = 1 * h;
     gimlet::grid_spec<S> gs;
     gs.lower = vec(0, -slab - gap / 2 - 16 * h);  // nodes on the slabs' faces, none inside the gap
@@ -542,4 +571,62 @@ TEST_CASE("self-contact: skipping the unsplit second fields changes no result", 
             if (a[i].get<f::body>() == 1) lowest = std::min(lowest, double(a[i].get<f::position>()[1]));
         CHECK(lowest > gs.lower[1]);
     }
+}
+
+// The rows of nodes that hold a split node (split_rows()) and those that hold a candidate
+// (prepare's third pass) let the solver and the partition skip the particles that cannot reach
+// them. A slot across the periodic seam of the last axis closes, with enough particles for the
+// slab passes' threads: every particle ends as it does when every particle is visited, to the
+// bit, on 2 threads against 1, and the split counts agree at every step.
+TEST_CASE("self-contact: the rows of split nodes skip no particle that reaches one", "[multi_field][self_contact]") {
+    const double h = 1e-3, w = 40 * h, length = 64 * h, gap = 1 * h;
+    gimlet::grid_spec<S> gs;
+    gs.lower = vec(0, -gap / 2 - 8 * h);  // the seam at y = lower, 8 cells below the slot
+    gs.upper = vec(w, gs.lower[1] + length);
+    gs.cell = h;
+    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
+    auto build = [&] {
+        gimlet::scene::scene<S, elastic> sc(gs);
+        // The whole strip but two slots one cell wide: one around y = 0 across half the strip,
+        // whose tips (intact material just beyond, which both faces reach) prepare's third pass
+        // keeps from splitting, and one across the seam (half a cell of it at each end of the
+        // domain) and the whole strip.
+        const double y0 = gs.lower[1], y1 = gs.upper[1];
+        const auto slot_a = box(vec(w / 4, -gap / 2), vec(3 * w / 4, gap / 2));
+        const auto seam_low = box(vec(-h, y0 - h), vec(w + h, y0 + gap / 2));
+        const auto seam_high = box(vec(-h, y1 - gap / 2), vec(w + h, y1 + h));
+        using gimlet::scene::difference;
+        sc.add_body(difference(difference(difference(box(vec(0, y0), vec(w, y1)), slot_a), seam_low), seam_high),
+                    gimlet::make_elastic_material(1000, 1e9, 0.25), vec::Zero(), 2, "strip");
+        return sc;
+    };
+    auto opt = one_thread();
+    solver_t<elastic, self_contact_unhinted> every(build(), opt);
+    opt.threads = 2;
+    solver_t<elastic> rows(build(), opt);
+    REQUIRE(rows.particles().size() >= 4096);  // the slab passes run on the threads
+    for (auto* ps : {&rows.particles(), &every.particles()}) {
+        // Each of the two bands between the slots moves apart from its middle, so that its
+        // halves close on both slots (50 m/s, against a wave speed of about 1,100 m/s).
+        auto& v = ps->column<f::velocity>();
+        const auto& x = ps->column<f::position>();
+        const double mid_low = 0.5 * (gs.lower[1] + gap / 2 - gap / 2), mid_high = 0.5 * (gap / 2 + gs.upper[1] - gap / 2);
+        for (std::size_t i = 0; i < ps->size(); ++i) {
+            const double y = x[i][1];
+            v[i] = vec(0, y > (y < 0 ? mid_low : mid_high) ? 50.0 : -50.0);
+        }
+    }
+    std::size_t most = 0, split_steps = 0;
+    while (every.time() < 30e-6) {
+        const auto dt = every.step();
+        rows.step(dt);
+        const std::size_t split = rows.partition().split_nodes();
+        REQUIRE(split == every.partition().split_nodes());
+        most = std::max(most, split);
+        split_steps += split > 0;
+    }
+    std::printf("slots across a periodic seam: %zu particles, %llu steps, largest split nodes %zu, steps with a split %zu\n",
+                rows.particles().size(), static_cast<unsigned long long>(rows.steps()), most, split_steps);
+    CHECK(split_steps > 0);
+    CHECK(same_state<f::stress>(rows.particles(), every.particles()));
 }

@@ -200,6 +200,7 @@ public:
     /// of stride(d), as axis_offsets gives): node_position's component d, to the bit, for every
     /// node with that offset, from one division instead of two per axis and node.
     [[nodiscard]] real axis_position(int d, int storage) const noexcept {
+        assert(storage % stride_[d] == 0);
         return spec_.lower[d] + real(storage / stride_[d] - offset_[d]) * spec_.cell;
     }
     /// x minus the position of the node stored at `index`, the nearest image along periodic axes.

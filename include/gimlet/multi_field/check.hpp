@@ -9,6 +9,8 @@
 
 #include <concepts>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace gimlet::multi_field {
 
@@ -40,6 +42,10 @@ consteval bool check() {
     static_assert(!requires(P& p) { p.splits(); } || requires(const P& p) {
         { p.splits() } -> std::convertible_to<bool>;
     }, "partition: splits must be `bool splits() const` (asked after prepare; false: every side is 0 this step)");
+    static_assert(!requires(P& p) { p.split_rows(); } || requires(const P& p) {
+        { p.split_rows() } -> std::same_as<const std::vector<std::uint8_t>&>;
+    }, "partition: split_rows must be `const std::vector<std::uint8_t>& split_rows() const` (asked after prepare on a "
+       "step that splits: a flag per row of nodes along the last axis, set where side may answer other than 0)");
     if constexpr (check_detail::has_count<P> && declares_required_fields<P>) {
         static_assert(P::fields_per_body >= 1 && P::fields_per_body <= 255,
                       "partition: fields_per_body must be in [1, 255]");

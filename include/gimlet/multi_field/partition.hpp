@@ -65,15 +65,16 @@ concept Partition = requires {
 /// `initialize`), each particle's stencil at the current positions (`stencils[i].for_each(
 /// f(node, S_ip, G_ip))`, nodes by storage index; `stencils[i].for_each_node_position(grid,
 /// f(node, S_ip, x_i))` gives each node's position as grid.node_position does, without its
-/// divisions), the grid (node_position, offset_from_node, offset_from, layer, size) and the
+/// divisions), the grid (node_position, offset_from_node, offset_from, layer, nodes, size) and the
 /// number of bodies. `for_each_particle_by_slab(f)` calls f(i) for every particle
 /// in an order that lets f add into per-node arrays without races at the nodes of particle i's
 /// own stencil (not at other nodes): every such node sums its particles' contributions in an
 /// order fixed by the grid and the particle order, whatever the thread count (so results stay
 /// thread-independent); `for_each_particle_by_slab(rows, f)` does the same for the particles
 /// whose stencils can reach a row of nodes r of the last axis (grid.layer) with rows[r] != 0
-/// (rows: a std::vector<std::uint8_t> of grid.nodes(dim - 1) flags), and may skip the others,
-/// in the same order. `for_each_index(count, f)` calls f(k) for every k in [0, count), split
+/// (rows: a std::vector<std::uint8_t> of grid.nodes(dim - 1) flags, or it throws), and may skip
+/// the others, in the same order. Neither may be called from inside f or another of the view's
+/// loops (the rows' form keeps the slabs it visits in the solver). `for_each_index(count, f)` calls f(k) for every k in [0, count), split
 /// between the solver's threads when count is large (a grid's entries): for per-node work
 /// where f(k) writes only entry k. f must not throw.
 template <class Store, class Stencils, class Grid, class BySlab, class ByIndex>

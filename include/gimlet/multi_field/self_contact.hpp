@@ -11,6 +11,7 @@
 #include "gimlet/multi_field/partition.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -126,12 +127,11 @@ struct self_contact {
         const auto& body = ps.template column<fields::body>();
         const auto& normal0 = ps.template column<fields::surface_normal>();
         const auto& F = ps.template column<fields::deformation_gradient>();
-        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle writes its
-        // own entries; pass 1 below computes them (it does not read them), and the later passes
-        // read them.
+        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle with a
+        // normal (a > 0) writes its own entries in pass 1 below (which does not read them), and
+        // pass 2 and the reference directions read them. A bulk particle's entries are neither
+        // written nor read: passes 1 and 2 skip it after one test.
         current_.resize(n * std::size_t(dim));
-        // Only particles with a normal (a > 0) have their entries written or read: a bulk
-        // particle's entries are never looked at, so the passes skip it after one test.
         auto current_normal = [&](std::size_t i, real a) {
             const matrix inv_t = F[i].inverse().transpose();
             vector c = inv_t * normal0[i];
@@ -181,6 +181,7 @@ struct self_contact {
         // Pass 3 and the split nodes' planes read it at the candidates, which pass 2 has reached.
         auto unit = [&](std::size_t e) {
             vector ref;
+            assert(best_particle_[e] < n);  // pass 1 set it wherever pass 2 asks (finite masses)
             if (!unit_set_[e]) {
                 ref = current(best_particle_[e]).normalized();
                 for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
@@ -240,9 +241,7 @@ struct self_contact {
             // axis) have anything to do here, where the view can skip the others (the solver's
             // can: partition_view).
             if constexpr (requires { view.for_each_particle_by_slab(candidate_rows_, empty_gap); }) {
-                candidate_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
-                for (std::size_t e = 0; e < entries; ++e)
-                    if (split_[e] == 1) candidate_rows_[std::size_t(view.grid.layer(e % nodes))] = 1;
+                flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] == 1; }, candidate_rows_);
                 view.for_each_particle_by_slab(candidate_rows_, empty_gap);
             } else {
                 view.for_each_particle_by_slab(empty_gap);
@@ -265,10 +264,8 @@ struct self_contact {
         split_nodes_ = split_count.load();
         // The rows of nodes (of the last axis) that hold a split node: the solver asks side()
         // only of the particles whose stencils can reach one (split_rows()).
-        split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
-        if (split_nodes_ > 0)
-            for (std::size_t e = 0; e < entries; ++e)
-                if (split_[e]) split_rows_[std::size_t(view.grid.layer(e % nodes))] = 1;
+        if (split_nodes_ > 0) flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] != 0; }, split_rows_);
+        else split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
         nodes_ = nodes;
         grid_length_.assign(std::size_t(dim), 0.0);
         for (int d = 0; d < dim; ++d) {
@@ -307,6 +304,19 @@ struct self_contact {
     [[nodiscard]] bool splits() const noexcept { return split_nodes_ > 0; }
 
 private:
+    // rows[r] = whether some body's entry at a node of row r (grid::layer, the last axis) has
+    // flagged(entry): the nodes of a row are a run of stride(dim - 1) consecutive indices, so
+    // the rows are read in order, without a division per entry.
+    template <class Grid, class Flagged>
+    void flag_rows(const Grid& g, std::size_t nodes, Flagged&& flagged, std::vector<std::uint8_t>& rows) const {
+        const int last = Grid::dim - 1;
+        const auto count = static_cast<std::size_t>(g.nodes(last)), run = static_cast<std::size_t>(g.stride(last));
+        rows.assign(count, 0);
+        for (std::size_t base = 0; base < split_.size(); base += nodes)
+            for (std::size_t r = 0; r < count; ++r)
+                for (std::size_t k = r * run, end = k + run; k < end && !rows[r]; ++k) rows[r] = flagged(base + k);
+    }
+
     std::size_t nodes_ = 0, split_nodes_ = 0;
     int dim_ = 0;
     std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, unit_, grid_length_;

@@ -29,9 +29,9 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cassert>
 #include <chrono>
+#include <concepts>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -476,6 +476,9 @@ private:
         void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
         template <class F>
         void operator()(const std::vector<std::uint8_t>& rows, F&& f) const {
+            const auto layers = static_cast<std::size_t>(self->grid_.nodes(dim - 1));
+            require(rows.size() == layers, "rows given to for_each_particle_by_slab (their count)", double(rows.size()),
+                    std::to_string(layers) + ": one flag per row of nodes along the last axis");
             self->for_each_particle_by_slab_reaching(rows, std::forward<F>(f));
         }
     };
@@ -529,33 +532,37 @@ private:
             });
             return ok;
         };
-        std::ptrdiff_t first_bad = n;
+        // A partition that names the rows of nodes holding a node it splits
+        // (multi_field::Partition's optional split_rows()) is asked only of the particles whose
+        // stencils reach one; every other particle is in its body's first field at every node.
+        const std::vector<std::uint8_t>* rows = nullptr;
+        const int layers = grid_.nodes(dim - 1);
         if constexpr (requires(const Part& q) {
-                          { q.split_rows() } -> std::convertible_to<const std::vector<std::uint8_t>&>;
+                          { q.split_rows() } -> std::same_as<const std::vector<std::uint8_t>&>;
                       }) {
-            // A partition that names the rows of nodes holding a node it splits
-            // (multi_field::Partition's optional split_rows()) is asked only of the particles
-            // whose stencils can reach one; every other particle is in its body's first field.
-            const std::vector<std::uint8_t>& rows = partition_.split_rows();
-            const auto layers = static_cast<std::size_t>(grid_.nodes(dim - 1));
-            require(rows.size() == layers, "the partition's split_rows() size", double(rows.size()),
+            rows = &partition_.split_rows();
+            require(rows->size() == std::size_t(layers), "the partition's split_rows() size", double(rows->size()),
                     std::to_string(layers) + ": one flag per row of nodes along the last axis");
-            std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
-            std::atomic<std::ptrdiff_t> bad{n};
-            for_each_particle_by_slab_reaching(rows, [&](std::size_t i) {
-                if (choose(i)) return;
-                auto k = static_cast<std::ptrdiff_t>(i), seen = bad.load(std::memory_order_relaxed);
-                while (k < seen && !bad.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
-                }
-            });
-            first_bad = bad.load();
-        } else {
-            detail::thread_shares shares(n, threads(), n >= parallel_threshold);
-            GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
-            for (auto claimed = shares.start(); shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
-                    if (!choose(static_cast<std::size_t>(k))) first_bad = std::min(first_bad, k);
         }
+        // Whether particle i's stencil reaches a flagged row: its rows along the last axis start
+        // at last_row and wrap only on a periodic axis (on a free one the stencil lies within the
+        // grid's ghost nodes), as grid::layer numbers them.
+        auto reaches = [&](std::size_t i) {
+            for (int a = 0, r = stencils_[i].last_row; a < Sh::stencil; ++a, ++r) {
+                if (r == layers) r = 0;
+                if ((*rows)[std::size_t(r)]) return true;
+            }
+            return false;
+        };
+        std::ptrdiff_t first_bad = n;
+        detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+        GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                if (rows && !reaches(i)) sides_[i] = {};
+                else if (!choose(i)) first_bad = std::min(first_bad, k);
+            }
         if (first_bad < n)
             fail(static_cast<std::size_t>(first_bad),
                  "the partition (multi_field::Partition::side) chose a field outside [0, " +
