@@ -191,8 +191,7 @@ public:
     [[nodiscard]] vector node_position(std::size_t index) const {
         vector x;
         for (int d = 0; d < dim; ++d) {
-            const int i = static_cast<int>(index / std::size_t(stride_[d])) % nodes_[d];
-            x[d] = spec_.lower[d] + real(i - offset_[d]) * spec_.cell;
+            x[d] = coordinate(d, static_cast<int>(index / std::size_t(stride_[d])) % nodes_[d]);
         }
         return x;
     }
@@ -201,7 +200,7 @@ public:
     /// node with that offset, from one division instead of two per axis and node.
     [[nodiscard]] real axis_position(int d, int storage) const noexcept {
         assert(storage % stride_[d] == 0);
-        return spec_.lower[d] + real(storage / stride_[d] - offset_[d]) * spec_.cell;
+        return coordinate(d, storage / stride_[d]);
     }
     /// x minus the position of the node stored at `index`, the nearest image along periodic axes.
     [[nodiscard]] vector offset_from_node(std::size_t index, const vector& x) const {
@@ -333,6 +332,10 @@ public:
     std::vector<vector> velocity_old;  ///< v_i^n = (mv)_i / m_i before the update (for FLIP)
 
 private:
+    // Coordinate d of the nodes with storage index i along axis d (node_position and
+    // axis_position: one expression, so the two agree to the bit).
+    [[nodiscard]] real coordinate(int d, int i) const noexcept { return spec_.lower[d] + real(i - offset_[d]) * spec_.cell; }
+
     // A node at a one-sided wall: its normal velocity stops; Coulomb friction takes at most mu
     // times the approach it stopped (none for a marked node now moving away) off its tangential
     // velocity.

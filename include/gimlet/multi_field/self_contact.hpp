@@ -11,8 +11,8 @@
 #include "gimlet/multi_field/partition.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -212,13 +212,10 @@ struct self_contact {
         // beyond the one facing along it: a gap between two faces, not the two faces of a
         // ligament.
         split_.resize(entries);
-        mid_.resize(entries), reference_.resize(entries * std::size_t(dim));
         std::atomic<bool> candidates{false};
         view.for_each_index(entries, [&](std::size_t e) {
             split_[e] = front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e];
             if (split_[e]) candidates.store(true, std::memory_order_relaxed);
-            mid_[e] = 0.0;
-            for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = 0.0;
         });
         const bool any = candidates.load();
         // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in
@@ -247,18 +244,14 @@ struct self_contact {
                 view.for_each_particle_by_slab(empty_gap);
             }
         }
-        // The split nodes' planes (without a candidate every entry is 0 already, mid_ and
-        // reference_ too).
+        // The split nodes: the candidates left (without a candidate every entry is 0 already).
+        // A split node's plane is its reference direction (unit_) and the midpoint of its fronts,
+        // both kept until the next prepare, where side() reads them.
         std::atomic<std::size_t> split_count{0};
         if (any) {
             view.for_each_index(entries, [&](std::size_t e) {
-                if (split_[e] != 1) {
-                    split_[e] = 0;
-                    return;
-                }
-                split_count.fetch_add(1, std::memory_order_relaxed);
-                mid_[e] = 0.5 * (front_along_[e] + front_against_[e]);
-                for (int d = 0; d < dim; ++d) reference_[e * std::size_t(dim) + std::size_t(d)] = unit_[e * std::size_t(dim) + std::size_t(d)];
+                if (split_[e] != 1) split_[e] = 0;
+                else split_count.fetch_add(1, std::memory_order_relaxed);
             });
         }
         split_nodes_ = split_count.load();
@@ -287,9 +280,9 @@ struct self_contact {
                 if (off > len / 2) off -= len;
                 else if (off < -len / 2) off += len;
             }
-            along += off * reference_[e * std::size_t(dim_) + std::size_t(d)];
+            along += off * unit_[e * std::size_t(dim_) + std::size_t(d)];
         }
-        return along < mid_[e] ? 0 : 1;
+        return along < 0.5 * (front_along_[e] + front_against_[e]) ? 0 : 1;
     }
 
     /// The rows of nodes along the last axis (grid::layer) that hold a split node this step
@@ -319,7 +312,7 @@ private:
 
     std::size_t nodes_ = 0, split_nodes_ = 0;
     int dim_ = 0;
-    std::vector<double> current_, best_, front_along_, front_against_, mid_, reference_, unit_, grid_length_;
+    std::vector<double> current_, best_, front_along_, front_against_, unit_, grid_length_;
     std::vector<std::size_t> best_particle_;
     std::vector<std::uint8_t> split_, candidate_rows_, split_rows_, unit_set_;
 };
