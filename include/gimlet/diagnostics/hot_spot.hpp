@@ -41,9 +41,10 @@ struct hot_spot_result {
 /// workspace serves one call at a time: calls that run concurrently need one each.
 template <class Vector>
 struct hot_spot_workspace {
-    std::vector<Vector> block_lo, block_hi, sorted_x;
+    std::vector<Vector> block_lo, block_hi, block_hot_lo, block_hot_hi, sorted_x;
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
-    std::vector<std::size_t> bin, cursor, start, block_hottest;
+    std::vector<std::size_t> bin, cursor, start, block_hottest, sorted_index;
+    std::vector<std::uint8_t> block_hot;
     std::vector<double> block_max, sorted_m, sorted_T;
 };
 
@@ -60,7 +61,9 @@ struct hot_spot_workspace {
 /// round a few ulps above every particle). Where T_b is not finite the reference is 0.
 ///
 /// `above` (K) is for a caller that tracks a running peak: only discs hotter than it are
-/// sought, so the centres that cannot hold one are skipped too. A result hotter than `above` is
+/// sought, so the centres that cannot hold one are skipped too, and only the bins within two of
+/// a particle hotter than `above` are sorted (a disc is no hotter than its hottest particle);
+/// where no particle is hotter, nothing is sorted or sought. A result hotter than `above` is
 /// the hottest disc, the same as without it; otherwise no disc is hotter than `above`, and the
 /// result names some cooler disc, or none (temperature -infinity, no particles). A NaN or
 /// +infinity `above` is ignored (as -infinity): the hottest disc is returned.
@@ -91,8 +94,10 @@ template <class Solver>
     // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
     // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
     const int threads = detail::threads_of(s);
-    const auto count_n = static_cast<std::ptrdiff_t>(n);
     const std::size_t blocks = detail::observer_blocks(n, threads);
+    // The discs sought are hotter than this (NaN and +infinity ignored, as documented).
+    const double wanted =
+        above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
 
     // The passes run in one parallel region (below), with barriers between them: where idle
     // threads sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against
@@ -106,6 +111,14 @@ template <class Solver>
     block_lo.assign(blocks, x[0]);
     block_hi.assign(blocks, x[0]);
     block_hottest.assign(blocks, none);
+    // Per block, the box of its particles hotter than `wanted` (if any): only a disc near one of
+    // those can be sought.
+    auto& block_hot_lo = work.block_hot_lo;
+    auto& block_hot_hi = work.block_hot_hi;
+    auto& block_hot = work.block_hot;
+    block_hot_lo.assign(blocks, x[0]);
+    block_hot_hi.assign(blocks, x[0]);
+    block_hot.assign(blocks, 0);
     // Every entry of bin, cell and the copies is written before it is read.
     auto& start = work.start;
     auto& bin = work.bin;
@@ -115,17 +128,25 @@ template <class Solver>
     auto& sorted_x = work.sorted_x;
     auto& sorted_m = work.sorted_m;
     auto& sorted_T = work.sorted_T;
+    auto& sorted_index = work.sorted_index;  // each copy's particle
     bin.resize(n);
     cell.resize(n);
     sorted_x.resize(n);
     sorted_m.resize(n);
     sorted_T.resize(n);
+    sorted_index.resize(n);
     const int team = blocks > 1 ? threads : 1;
     detail::thread_shares bounds_pass(static_cast<std::ptrdiff_t>(blocks), team);
     std::optional<detail::thread_shares> count_pass, copy_pass, merge_pass;
     vector lo = x[0], hi = x[0];
     std::array<std::size_t, dim> bins{};
     std::size_t total = 1, sort_blocks = 1, merge_blocks = 1;
+    // The bins kept per axis (those within two of a bin holding a particle hotter than
+    // `wanted`: every disc that could be sought reads only these), the bins whose particles are
+    // tried as centres (within one), and a box of places one bin wider than the kept bins, which
+    // tells most particles outside them without the division of bin_of.
+    std::array<std::size_t, dim> keep_lo{}, keep_hi{}, try_lo{}, try_hi{};
+    std::array<double, dim> keep_from{}, keep_to{};
     auto bin_of = [&](const vector& p, int d) { return std::size_t(double(p[d] - lo[d]) / radius); };
     auto flat = [&](const std::array<std::size_t, dim>& b) {
         std::size_t k = 0;
@@ -203,15 +224,24 @@ template <class Solver>
         // The same pass finds each block's hottest particle: the first of its largest
         // temperatures, NaN never taken (`none` where the block has only NaN).
         detail::for_each_block_of(bounds_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-            vector lo_b = x[0], hi_b = x[0];
+            vector lo_b = x[0], hi_b = x[0], hot_lo_b = x[0], hot_hi_b = x[0];
             std::size_t h = none;
+            bool hot = false;
             for (std::size_t i = first; i < last; ++i) {
                 lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
                 if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
+                if (double(T[i]) > wanted) {
+                    hot_lo_b = hot ? vector(hot_lo_b.cwiseMin(x[i])) : x[i];
+                    hot_hi_b = hot ? vector(hot_hi_b.cwiseMax(x[i])) : x[i];
+                    hot = true;
+                }
             }
             block_lo[b] = lo_b;
             block_hi[b] = hi_b;
             block_hottest[b] = h;
+            block_hot_lo[b] = hot_lo_b;
+            block_hot_hi[b] = hot_hi_b;
+            block_hot[b] = hot;
         });
         GIMLET_OMP(barrier)
         GIMLET_OMP(single)
@@ -241,13 +271,32 @@ template <class Solver>
             if (hottest != none) try {
                     require(countable, "hot-spot radius (m)", radius,
                             "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
-                    cursor.assign(sort_blocks * total, 0);
-                    block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
-                    start.reserve(total + 1);  // so that block_offsets does not allocate
-                    count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                    copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                    merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
-                    go = true;
+                    // No disc is hotter than its hottest particle (the means, above, exactly):
+                    // where the hottest particle is no hotter than `above`, no disc is sought and
+                    // nothing is sorted (the result names none). A caller that tracks a running
+                    // peak meets this in every step until the material heats past it.
+                    if (double(T[hottest]) > wanted) {
+                        // The box of the particles hotter than `wanted` (the hottest one among them).
+                        vector hot_lo = x[hottest], hot_hi = x[hottest];
+                        for (std::size_t b = 0; b < blocks; ++b)
+                            if (block_hot[b]) hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
+                        for (int d = 0; d < dim; ++d) {
+                            const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
+                            keep_lo[d] = a >= 2 ? a - 2 : 0;
+                            keep_hi[d] = std::min(z + 2, bins[d] - 1);
+                            try_lo[d] = a >= 1 ? a - 1 : 0;
+                            try_hi[d] = std::min(z + 1, bins[d] - 1);
+                            keep_from[d] = double(lo[d]) + (double(keep_lo[d]) - 1) * radius;
+                            keep_to[d] = double(lo[d]) + (double(keep_hi[d]) + 2) * radius;
+                        }
+                        cursor.assign(sort_blocks * total, 0);
+                        block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
+                        start.reserve(total + 1);  // so that block_offsets does not allocate
+                        count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                        copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+                        merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
+                        go = true;
+                    }
                 } catch (...) {
                     failed = std::current_exception();
                 }
@@ -257,7 +306,17 @@ template <class Solver>
                 std::size_t* count = cursor.data() + b * total;
                 double* t_max = block_max.data() + b * total;
                 for (std::size_t i = first; i < last; ++i) {
-                    for (int d = 0; d < dim; ++d) cell[i][d] = bin_of(x[i], d);
+                    bool kept = true;
+                    for (int d = 0; d < dim; ++d) kept = kept && double(x[i][d]) >= keep_from[d] && double(x[i][d]) <= keep_to[d];
+                    if (kept)
+                        for (int d = 0; d < dim; ++d) {
+                            cell[i][d] = bin_of(x[i], d);
+                            kept = kept && cell[i][d] >= keep_lo[d] && cell[i][d] <= keep_hi[d];
+                        }
+                    if (!kept) {
+                        bin[i] = total;  // not sorted: no disc that is sought reaches it
+                        continue;
+                    }
                     bin[i] = flat(cell[i]);
                     ++count[bin[i]];
                     t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
@@ -276,10 +335,12 @@ template <class Solver>
             detail::for_each_block_of(*copy_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
                 std::size_t* at = cursor.data() + b * total;
                 for (std::size_t i = first; i < last; ++i) {
+                    if (bin[i] == total) continue;
                     const std::size_t j = at[bin[i]]++;
                     sorted_x[j] = x[i];
                     sorted_m[j] = double(m[i]);
                     sorted_T[j] = double(T[i]);
+                    sorted_index[j] = i;
                 }
             });
             detail::for_each_block_of(*merge_pass, total, merge_blocks, [&](std::size_t, std::size_t first, std::size_t last) {
@@ -308,10 +369,17 @@ template <class Solver>
             // (detail::thread_shares): a centre's cost varies a hundredfold (most are skipped,
             // a hot one sums its disc), and the centres are visited once a call, so there is no
             // data to keep near a core; the hottest disc is the same whoever tries it.
+            // Only the kept particles in the bins tried are centres: any other centre's bins
+            // hold no particle hotter than `wanted`, so its disc is not sought. (The order the
+            // centres are tried in does not matter: the result is a maximum in a total order.)
             best_disc local;
+            const auto kept = static_cast<std::ptrdiff_t>(start[total]);
             GIMLET_OMP(for schedule(dynamic, 256) nowait)
-            for (std::ptrdiff_t k = 0; k < count_n; ++k) {
-                const auto i = static_cast<std::size_t>(k);
+            for (std::ptrdiff_t k = 0; k < kept; ++k) {
+                const std::size_t i = sorted_index[std::size_t(k)];
+                bool tried = true;
+                for (int d = 0; d < dim; ++d) tried = tried && cell[i][d] >= try_lo[d] && cell[i][d] <= try_hi[d];
+                if (!tried) continue;
                 const double bound = bound_at(i);
                 if (bound < floor || (bound == floor && i > hottest)) continue;
                 std::size_t count = hottest_count;
