@@ -273,30 +273,64 @@ TEST_CASE("hot_spot: skipping centres that cannot win gives the answer of trying
     CHECK(none.max_temperature == hottest);
 }
 
-// Sought above a peak, only the bins within two of a particle hotter than it are sorted. The
-// hottest disc here is centred off the one particle hotter than the peak (2000 K, with 499.9 K
-// material on one side of it and 300 K on the other, the peak 500 K): its disc reaches two bins
-// from that particle's, and it must be summed whole (a disc cut to the bins within one is
-// hotter: it fails with those).
+// Sought above a peak, only the bins within two of the box of the particles hotter than it are
+// sorted. The hottest disc here is centred off the one particle hotter than the peak (2000 K,
+// with 499.9 K material on one side of it and 300 K elsewhere, the peak 500 K): its disc reaches
+// two bins from that particle's, and it must be summed whole (a disc cut to the bins within one
+// is hotter: it fails with those). The warm side on each side of it in turn, at three radii, and
+// on 1, 2 and 3 threads at 4 x 4 particles per cell (the first pass in blocks, which merge their
+// boxes), with a workspace reused from call to call.
 TEST_CASE("hot_spot: sought above a peak, the discs near the edge of the sorted bins are whole", "[diagnostics]") {
-    auto sol = two_blocks(2, 2);
-    auto& ps = sol.particles();
-    std::size_t h = 0;
-    const S::vector middle(10e-3, 24e-3);
-    for (std::size_t i = 1; i < ps.size(); ++i)
-        if ((ps[i].get<position>() - middle).squaredNorm() < (ps[h].get<position>() - middle).squaredNorm()) h = i;
-    const S::vector at = ps[h].get<position>();
-    for (std::size_t i = 0; i < ps.size(); ++i) ps[i].get<temperature>() = ps[i].get<position>()[0] >= at[0] ? 499.9 : 300.0;
-    ps[h].get<temperature>() = 2000.0;
-    for (const double radius : {0.75e-3, 1.2e-3, 2e-3}) {
-        INFO("radius " << radius);
-        const auto all = gimlet::diagnostics::hot_spot(sol, radius);
-        const auto above = gimlet::diagnostics::hot_spot(sol, radius, 500.0);
+    auto runs = on_1_2_3_threads();
+    std::vector<gimlet::diagnostics::hot_spot_workspace<S::vector>> work(runs.size());
+    const S::vector middle(10.1e-3, 24.1e-3);  // off the particles' lattice: one particle is nearest
+    for (const S::vector& side : {S::vector(1, 0), S::vector(-1, 0), S::vector(0, 1), S::vector(0, -1)}) {
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            auto& ps = runs[k].particles();
+            std::size_t h = 0;
+            for (std::size_t i = 1; i < ps.size(); ++i)
+                if ((ps[i].get<position>() - middle).squaredNorm() < (ps[h].get<position>() - middle).squaredNorm()) h = i;
+            const S::vector at = ps[h].get<position>();
+            for (std::size_t i = 0; i < ps.size(); ++i)
+                ps[i].get<temperature>() = (ps[i].get<position>() - at).dot(side) >= 0 ? 499.9 : 300.0;
+            ps[h].get<temperature>() = 2000.0;
+            for (const double radius : {0.75e-3, 1.2e-3, 2e-3}) {
+                INFO("side " << side.transpose() << ", " << k + 1 << " threads, radius " << radius);
+                const auto all = gimlet::diagnostics::hot_spot(runs[k], radius);
+                const auto above = gimlet::diagnostics::hot_spot(runs[k], radius, 500.0, work[k]);
+                REQUIRE(all.temperature > 500.0);
+                CHECK(all.centre != at);  // off the hot particle, towards the warm side
+                CHECK((all.centre - at).dot(side) > 0);
+                CHECK(above.temperature == all.temperature);
+                CHECK(above.centre == all.centre);
+                CHECK(above.particles == all.particles);
+            }
+        }
+    }
+    // Two particles hotter than the peak, far apart and in different blocks of the first pass:
+    // the hottest alone in cool material (the lower block), the other beside warm material
+    // (the upper block), where the hottest disc is. The box must hold both.
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        auto& ps = runs[k].particles();
+        std::size_t a = 0, b = 0;
+        const S::vector lower(3.1e-3, 5.1e-3), upper(16.1e-3, 26.1e-3);
+        for (std::size_t i = 1; i < ps.size(); ++i) {
+            if ((ps[i].get<position>() - lower).squaredNorm() < (ps[a].get<position>() - lower).squaredNorm()) a = i;
+            if ((ps[i].get<position>() - upper).squaredNorm() < (ps[b].get<position>() - upper).squaredNorm()) b = i;
+        }
+        for (std::size_t i = 0; i < ps.size(); ++i)
+            ps[i].get<temperature>() = (ps[i].get<position>() - ps[b].get<position>()).norm() < 3e-3 ? 499.9 : 300.0;
+        ps[a].get<temperature>() = 2000.0;
+        ps[b].get<temperature>() = 1500.0;
+        INFO(k + 1 << " threads");
+        const auto all = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3);
+        const auto above = gimlet::diagnostics::hot_spot(runs[k], 0.75e-3, 500.0, work[k]);
         REQUIRE(all.temperature > 500.0);
-        CHECK(all.centre != at);  // off the hot particle, towards the warm side
+        CHECK((all.centre - ps[b].get<position>()).norm() < 1e-3);  // beside the cooler of the two
         CHECK(above.temperature == all.temperature);
         CHECK(above.centre == all.centre);
         CHECK(above.particles == all.particles);
+        CHECK(above.max_temperature == 2000.0);
     }
 }
 

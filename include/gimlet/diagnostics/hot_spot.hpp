@@ -36,7 +36,7 @@ struct hot_spot_result {
 /// What hot_spot allocates on each call (its bins and the particles' copies in bin order),
 /// kept for the next call. A caller that asks every step passes the same workspace to each
 /// call and saves the allocations, their zeroing and their page faults, which run on one
-/// thread (at 0.25 mm cells, 215,784 particles, about 12 MB a call: docs/performance.md). It
+/// thread (at 0.25 mm cells, 215,784 particles, about 14 MB a call: docs/performance.md). It
 /// holds nothing the answer depends on: any workspace, new or used, gives the same result. One
 /// workspace serves one call at a time: calls that run concurrently need one each.
 template <class Vector>
@@ -62,10 +62,11 @@ struct hot_spot_workspace {
 ///
 /// `above` (K) is for a caller that tracks a running peak: only discs hotter than it are
 /// sought, so the centres that cannot hold one are skipped too, and only the bins within two of
-/// a particle hotter than `above` are sorted (a disc is no hotter than its hottest particle);
-/// where no particle is hotter, nothing is sorted or sought. A result hotter than `above` is
-/// the hottest disc, the same as without it; otherwise no disc is hotter than `above`, and the
-/// result names some cooler disc, or none (temperature -infinity, no particles). A NaN or
+/// the box of the particles hotter than `above` are sorted (a disc is no hotter than its
+/// hottest particle); where no particle is hotter, nothing is sorted or sought. A result hotter
+/// than `above` is the hottest disc, the same as without it; otherwise no disc is hotter than
+/// `above`, and the result names a disc no hotter than it, or none (temperature -infinity, no
+/// particles). A NaN or
 /// +infinity `above` is ignored (as -infinity): the hottest disc is returned.
 ///
 /// max_temperature is the hottest particle's temperature, NaN never taken (NaN where every
@@ -141,10 +142,11 @@ template <class Solver>
     vector lo = x[0], hi = x[0];
     std::array<std::size_t, dim> bins{};
     std::size_t total = 1, sort_blocks = 1, merge_blocks = 1;
-    // The bins kept per axis (those within two of a bin holding a particle hotter than
+    // The bins kept per axis (those within two of the box of the particles hotter than
     // `wanted`: every disc that could be sought reads only these), the bins whose particles are
-    // tried as centres (within one), and a box of places one bin wider than the kept bins, which
-    // tells most particles outside them without the division of bin_of.
+    // tried as centres (within one), and, in the quantity bin_of divides by the radius, a range
+    // one bin wider than the kept bins, which tells most particles outside them without the
+    // division.
     std::array<std::size_t, dim> keep_lo{}, keep_hi{}, try_lo{}, try_hi{};
     std::array<double, dim> keep_from{}, keep_to{};
     auto bin_of = [&](const vector& p, int d) { return std::size_t(double(p[d] - lo[d]) / radius); };
@@ -217,7 +219,7 @@ template <class Solver>
     // An exception must not leave the region (that would end the program): the serial step's,
     // a radius too small for the bins or an allocation that fails, is kept and thrown after it.
     std::exception_ptr failed;
-    bool go = false;  // a finite temperature, and the bins allocated: the passes after the first
+    bool go = false;  // a particle hotter than `wanted`, and the bins allocated: the passes after the first
     GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
     {
         // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
@@ -286,8 +288,8 @@ template <class Solver>
                             keep_hi[d] = std::min(z + 2, bins[d] - 1);
                             try_lo[d] = a >= 1 ? a - 1 : 0;
                             try_hi[d] = std::min(z + 1, bins[d] - 1);
-                            keep_from[d] = double(lo[d]) + (double(keep_lo[d]) - 1) * radius;
-                            keep_to[d] = double(lo[d]) + (double(keep_hi[d]) + 2) * radius;
+                            keep_from[d] = (double(keep_lo[d]) - 1) * radius;
+                            keep_to[d] = (double(keep_hi[d]) + 2) * radius;
                         }
                         cursor.assign(sort_blocks * total, 0);
                         block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
@@ -307,7 +309,10 @@ template <class Solver>
                 double* t_max = block_max.data() + b * total;
                 for (std::size_t i = first; i < last; ++i) {
                     bool kept = true;
-                    for (int d = 0; d < dim; ++d) kept = kept && double(x[i][d]) >= keep_from[d] && double(x[i][d]) <= keep_to[d];
+                    for (int d = 0; d < dim; ++d) {
+                        const double from_lo = double(x[i][d] - lo[d]);  // what bin_of divides
+                        kept = kept && from_lo >= keep_from[d] && from_lo <= keep_to[d];
+                    }
                     if (kept)
                         for (int d = 0; d < dim; ++d) {
                             cell[i][d] = bin_of(x[i], d);
@@ -353,7 +358,8 @@ template <class Solver>
             // hottest disc, since its mean is at most that particle's temperature, exactly
             // (above). Nor where that particle is as hot as the floor and the centre comes
             // after the hottest particle, whose own disc is then tried and would win the tie.
-            // So the result is that of trying every centre, at O(n) cost where the hot
+            // So where a disc hotter than `above` exists (always, with no `above`), the result
+            // is that of trying every centre, at O(n) cost where the hot
             // material is small, and where the temperatures are uniform (before a hot spot
             // forms) every centre after the hottest particle is skipped. The hottest
             // particle's disc is summed once and its bits reused in the loop, so the floor and
@@ -361,9 +367,7 @@ template <class Solver>
             GIMLET_OMP(single)
             {
                 hottest_mean = disc(hottest, bound_at(hottest), hottest_count);
-                const double sought =
-                    above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
-                floor = std::max(hottest_mean, sought);
+                floor = std::max(hottest_mean, wanted);
             }
             // The centres are tried on demand in small chunks, not in the solver's shares
             // (detail::thread_shares): a centre's cost varies a hundredfold (most are skipped,
