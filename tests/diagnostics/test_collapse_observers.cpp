@@ -334,6 +334,47 @@ TEST_CASE("hot_spot: sought above a peak, the discs near the edge of the sorted 
     }
 }
 
+// With no peak, the bins sorted are those within two of a particle at least about as hot as
+// the hottest particle's disc. Two hot particles 1 mm apart in 300 K material: only a disc
+// centred between them holds both, and that centre's bin may hold neither (the bins are 0.75 mm
+// wide), so it must be tried from the hot bins' neighbours. Every placement along a row and a
+// column gives the brute force's hottest disc.
+TEST_CASE("hot_spot: a disc between two hot particles, in a bin of neither", "[diagnostics]") {
+    auto sol = two_blocks(2, 2);
+    auto& ps = sol.particles();
+    const double radius = 0.75e-3;
+    auto nearest = [&](const S::vector& at) {
+        std::size_t k = 0;
+        for (std::size_t i = 1; i < ps.size(); ++i)
+            if ((ps[i].get<position>() - at).squaredNorm() < (ps[k].get<position>() - at).squaredNorm()) k = i;
+        return k;
+    };
+    int off_centre = 0;
+    for (const S::vector& step : {S::vector(1e-3, 0), S::vector(0, 1e-3)})
+        for (int shift = 0; shift < 6; ++shift) {
+            const S::vector first = S::vector(6.1e-3, 22.1e-3) + 0.5e-3 * shift * step / step.norm();
+            const std::size_t a = nearest(first), b = nearest(first + step);
+            for (std::size_t i = 0; i < ps.size(); ++i) ps[i].get<temperature>() = 300.0;
+            ps[a].get<temperature>() = 2000.0;
+            ps[b].get<temperature>() = 2000.0;
+            double best = -1;
+            for (std::size_t i = 0; i < ps.size(); ++i) {
+                double mass = 0, heat = 0;
+                for (std::size_t q = 0; q < ps.size(); ++q)
+                    if ((ps[q].get<position>() - ps[i].get<position>()).squaredNorm() <= radius * radius) {
+                        mass += double(ps[q].get<gimlet::fields::mass>());
+                        heat += double(ps[q].get<gimlet::fields::mass>()) * ps[q].get<temperature>();
+                    }
+                best = std::max(best, heat / mass);
+            }
+            const auto r = gimlet::diagnostics::hot_spot(sol, radius);
+            INFO("step " << step.transpose() << ", shift " << shift);
+            CHECK(r.temperature == Approx(best).epsilon(1e-12));
+            off_centre += r.centre != ps[a].get<position>() && r.centre != ps[b].get<position>();
+        }
+    CHECK(off_centre == 12);  // the hottest disc is never centred on a hot particle
+}
+
 TEST_CASE("hot_spot: the same disc, centre and count on 1, 2 and 3 threads, ties to the lowest index", "[diagnostics][threads]") {
     // 4 x 4 particles per cell (7,000 and more: the centres are then tried in parallel), with
     // pseudo-random temperatures that tie often, then uniform ones, where every disc's mean is

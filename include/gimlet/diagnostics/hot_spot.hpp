@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -45,7 +46,8 @@ struct hot_spot_workspace {
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
     std::vector<std::size_t> bin, cursor, start, block_hottest, sorted_index;
     std::vector<std::uint8_t> block_hot;
-    std::vector<double> block_max, sorted_m, sorted_T;
+    std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess;
+    std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
 };
 
 /// Over every particle centre c, the mass-weighted mean temperature of the particles whose
@@ -175,6 +177,18 @@ template <class Solver>
                     for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins[1] + y) * bins[0] + x0);
         }
     };
+    // f(cell) for every cell from `from` to `to` (inclusive, per axis), the first axis fastest.
+    auto for_cells = [&](const std::array<std::size_t, dim>& from, const std::array<std::size_t, dim>& to, auto&& f) {
+        std::array<std::size_t, dim> k{};
+        if constexpr (dim == 2) {
+            for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
+                for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
+        } else {
+            for (k[2] = from[2]; k[2] <= to[2]; ++k[2])
+                for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
+                    for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
+        }
+    };
     // The hottest particle of the 3^dim bins around particle i's (NaN never taken).
     auto bound_at = [&](std::size_t i) {
         double bound = -std::numeric_limits<double>::infinity();
@@ -220,6 +234,40 @@ template <class Solver>
     // a radius too small for the bins or an allocation that fails, is kept and thrown after it.
     std::exception_ptr failed;
     bool go = false;  // a particle hotter than `wanted`, and the bins allocated: the passes after the first
+    // A search with no `above` (a sample's) is narrowed too, by a lower bound on the hottest
+    // disc: the hottest particle's disc, summed in particle order, less a margin far above the
+    // rounding of any order of its sum (`hot_floor`). Every centre whose bins' hottest particle
+    // reaches the search's floor is then near a particle at least that hot, so the bins kept
+    // are those within two of a bin holding one (`keep_bin`, `try_bin` within one): a map, not
+    // a box, since two hot spots far apart would put everything between them in a box.
+    bool refine = false;
+    double hot_floor = -std::numeric_limits<double>::infinity();
+    auto& block_mass = work.block_mass;
+    auto& block_excess = work.block_excess;
+    auto& hot_bin = work.hot_bin;
+    auto& keep_bin = work.keep_bin;
+    auto& try_bin = work.try_bin;
+    std::optional<detail::thread_shares> near_pass, mark_pass;
+    // The kept and tried bins' ranges around the box [hot_lo, hot_hi] of the hot particles, and
+    // the sort's arrays (one thread, in a `single`).
+    auto prepare = [&](const vector& hot_lo, const vector& hot_hi) {
+        for (int d = 0; d < dim; ++d) {
+            const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
+            keep_lo[d] = a >= 2 ? a - 2 : 0;
+            keep_hi[d] = std::min(z + 2, bins[d] - 1);
+            try_lo[d] = a >= 1 ? a - 1 : 0;
+            try_hi[d] = std::min(z + 1, bins[d] - 1);
+            keep_from[d] = (double(keep_lo[d]) - 1) * radius;
+            keep_to[d] = (double(keep_hi[d]) + 2) * radius;
+        }
+        cursor.assign(sort_blocks * total, 0);
+        block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
+        start.reserve(total + 1);  // so that block_offsets does not allocate
+        count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+        copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
+        merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
+        go = true;
+    };
     GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
     {
         // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
@@ -278,30 +326,89 @@ template <class Solver>
                     // nothing is sorted (the result names none). A caller that tracks a running
                     // peak meets this in every step until the material heats past it.
                     if (double(T[hottest]) > wanted) {
-                        // The box of the particles hotter than `wanted` (the hottest one among them).
-                        vector hot_lo = x[hottest], hot_hi = x[hottest];
-                        for (std::size_t b = 0; b < blocks; ++b)
-                            if (block_hot[b]) hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
-                        for (int d = 0; d < dim; ++d) {
-                            const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
-                            keep_lo[d] = a >= 2 ? a - 2 : 0;
-                            keep_hi[d] = std::min(z + 2, bins[d] - 1);
-                            try_lo[d] = a >= 1 ? a - 1 : 0;
-                            try_hi[d] = std::min(z + 1, bins[d] - 1);
-                            keep_from[d] = (double(keep_lo[d]) - 1) * radius;
-                            keep_to[d] = (double(keep_hi[d]) + 2) * radius;
+                        if (wanted > -std::numeric_limits<double>::infinity()) {
+                            // The box of the particles hotter than `wanted` (the hottest one among them).
+                            vector hot_lo = x[hottest], hot_hi = x[hottest];
+                            for (std::size_t b = 0; b < blocks; ++b)
+                                if (block_hot[b]) hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
+                            prepare(hot_lo, hot_hi);
+                        } else {
+                            refine = true;  // the passes below find hot_floor and the bins near it
+                            block_mass.assign(blocks, 0.0);
+                            block_excess.assign(blocks, 0.0);
+                            hot_bin.assign(total, 0);
+                            near_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
+                            mark_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
                         }
-                        cursor.assign(sort_blocks * total, 0);
-                        block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
-                        start.reserve(total + 1);  // so that block_offsets does not allocate
-                        count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                        copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-                        merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
-                        go = true;
                     }
                 } catch (...) {
                     failed = std::current_exception();
                 }
+        }
+        if (refine) {  // the same for every thread, as `go`
+            // The hottest particle's disc, block by block, relative to its temperature (as
+            // `disc` sums it: every term at most zero).
+            const vector c = x[hottest];
+            const double ref = std::isfinite(double(T[hottest])) ? double(T[hottest]) : 0.0;
+            detail::for_each_block_of(*near_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
+                double mass = 0, excess = 0;
+                for (std::size_t i = first; i < last; ++i) {
+                    if (double((x[i] - c).squaredNorm()) > r2) continue;
+                    mass += double(m[i]);
+                    excess += double(m[i]) * (double(T[i]) - ref);
+                }
+                block_mass[b] = mass;
+                block_excess[b] = excess;
+            });
+            GIMLET_OMP(barrier)
+            GIMLET_OMP(single)
+            {
+                double mass = 0, excess = 0;
+                for (std::size_t b = 0; b < blocks; ++b) mass += block_mass[b], excess += block_excess[b];
+                const double estimate = ref + excess / mass;
+                // Its terms share one sign, so any order of the sum rounds it by a few ulps of
+                // |estimate| + |ref - estimate| per particle: a millionth of that is far beyond.
+                if (std::isfinite(estimate)) hot_floor = estimate - 1e-6 * (std::abs(estimate) + std::abs(ref - estimate));
+            }
+            // The bins holding a particle at least hot_floor, and the box of those particles.
+            detail::for_each_block_of(*mark_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
+                vector hot_lo_b = x[hottest], hot_hi_b = x[hottest];
+                for (std::size_t i = first; i < last; ++i) {
+                    if (!(double(T[i]) >= hot_floor)) continue;
+                    hot_lo_b = hot_lo_b.cwiseMin(x[i]), hot_hi_b = hot_hi_b.cwiseMax(x[i]);
+                    std::array<std::size_t, dim> at{};
+                    for (int d = 0; d < dim; ++d) at[d] = bin_of(x[i], d);
+                    std::atomic_ref<std::uint8_t>(hot_bin[flat(at)]).store(1, std::memory_order_relaxed);
+                }
+                block_hot_lo[b] = hot_lo_b;
+                block_hot_hi[b] = hot_hi_b;
+            });
+            GIMLET_OMP(barrier)
+            GIMLET_OMP(single)
+            {
+                vector hot_lo = x[hottest], hot_hi = x[hottest];
+                for (std::size_t b = 0; b < blocks; ++b)
+                    hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
+                try {
+                    keep_bin.assign(total, 0);
+                    try_bin.assign(total, 0);
+                    prepare(hot_lo, hot_hi);
+                    // Each hot bin marks the bins within two (kept) and one (tried).
+                    std::array<std::size_t, dim> from{}, to{};
+                    for (int d = 0; d < dim; ++d) from[d] = bin_of(hot_lo, d), to[d] = bin_of(hot_hi, d);
+                    for_cells(from, to, [&](const std::array<std::size_t, dim>& h) {
+                        if (!hot_bin[flat(h)]) return;
+                        std::array<std::size_t, dim> a{}, z{};
+                        for (int d = 0; d < dim; ++d) a[d] = h[d] >= 2 ? h[d] - 2 : 0, z[d] = std::min(h[d] + 2, bins[d] - 1);
+                        for_cells(a, z, [&](const std::array<std::size_t, dim>& k) { keep_bin[flat(k)] = 1; });
+                        for (int d = 0; d < dim; ++d) a[d] = h[d] >= 1 ? h[d] - 1 : 0, z[d] = std::min(h[d] + 1, bins[d] - 1);
+                        for_cells(a, z, [&](const std::array<std::size_t, dim>& k) { try_bin[flat(k)] = 1; });
+                    });
+                } catch (...) {
+                    go = false;
+                    failed = std::current_exception();
+                }
+            }
         }
         if (go) {  // the same for every thread: written before the barrier that ends `single`
             detail::for_each_block_of(*count_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
@@ -318,11 +425,11 @@ template <class Solver>
                             cell[i][d] = bin_of(x[i], d);
                             kept = kept && cell[i][d] >= keep_lo[d] && cell[i][d] <= keep_hi[d];
                         }
-                    if (!kept) {
+                    if (kept) bin[i] = flat(cell[i]);
+                    if (!kept || (refine && !keep_bin[bin[i]])) {
                         bin[i] = total;  // not sorted: no disc that is sought reaches it
                         continue;
                     }
-                    bin[i] = flat(cell[i]);
                     ++count[bin[i]];
                     t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
                 }
@@ -383,7 +490,7 @@ template <class Solver>
                 const std::size_t i = sorted_index[std::size_t(k)];
                 bool tried = true;
                 for (int d = 0; d < dim; ++d) tried = tried && cell[i][d] >= try_lo[d] && cell[i][d] <= try_hi[d];
-                if (!tried) continue;
+                if (!tried || (refine && !try_bin[bin[i]])) continue;
                 const double bound = bound_at(i);
                 if (bound < floor || (bound == floor && i > hottest)) continue;
                 std::size_t count = hottest_count;
