@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -46,7 +45,7 @@ struct hot_spot_workspace {
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
     std::vector<std::size_t> bin, cursor, start, block_hottest, sorted_index;
     std::vector<std::uint8_t> block_hot;
-    std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess;
+    std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_ring;
     std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
 };
 
@@ -68,7 +67,8 @@ struct hot_spot_workspace {
 /// hottest particle); where no particle is hotter, nothing is sorted or sought. A result hotter
 /// than `above` is the hottest disc, the same as without it; otherwise no disc is hotter than
 /// `above`, and the result names a disc no hotter than it, or none (temperature -infinity, no
-/// particles). A NaN or
+/// particles). Without `above`, only the bins within two of a bin holding a particle about as
+/// hot as the hottest particle's disc are sorted (the same disc results). A NaN or
 /// +infinity `above` is ignored (as -infinity): the hottest disc is returned.
 ///
 /// max_temperature is the hottest particle's temperature, NaN never taken (NaN where every
@@ -235,15 +235,15 @@ template <class Solver>
     std::exception_ptr failed;
     bool go = false;  // a particle hotter than `wanted`, and the bins allocated: the passes after the first
     // A search with no `above` (a sample's) is narrowed too, by a lower bound on the hottest
-    // disc: the hottest particle's disc, summed in particle order, less a margin far above the
-    // rounding of any order of its sum (`hot_floor`). Every centre whose bins' hottest particle
-    // reaches the search's floor is then near a particle at least that hot, so the bins kept
-    // are those within two of a bin holding one (`keep_bin`, `try_bin` within one): a map, not
-    // a box, since two hot spots far apart would put everything between them in a box.
+    // disc (`hot_floor`, below the search's floor): every centre whose bins' hottest particle
+    // reaches that floor is then near a particle at least hot_floor hot, so the bins kept are
+    // those within two of a bin holding one (`keep_bin`, `try_bin` within one). A map, not a
+    // box: two hot spots far apart would put everything between them in a box.
     bool refine = false;
     double hot_floor = -std::numeric_limits<double>::infinity();
     auto& block_mass = work.block_mass;
     auto& block_excess = work.block_excess;
+    auto& block_ring = work.block_ring;
     auto& hot_bin = work.hot_bin;
     auto& keep_bin = work.keep_bin;
     auto& try_bin = work.try_bin;
@@ -333,12 +333,13 @@ template <class Solver>
                                 if (block_hot[b]) hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
                             prepare(hot_lo, hot_hi);
                         } else {
-                            refine = true;  // the passes below find hot_floor and the bins near it
                             block_mass.assign(blocks, 0.0);
                             block_excess.assign(blocks, 0.0);
-                            hot_bin.assign(total, 0);
+                            block_ring.assign(blocks, 0.0);
+                            hot_bin.assign(blocks * total, 0);  // a row per block: no two threads write one byte
                             near_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
                             mark_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
+                            refine = true;  // last, as `go`: the passes below find hot_floor and the bins near it
                         }
                     }
                 } catch (...) {
@@ -346,39 +347,70 @@ template <class Solver>
                 }
         }
         if (refine) {  // the same for every thread, as `go`
-            // The hottest particle's disc, block by block, relative to its temperature (as
-            // `disc` sums it: every term at most zero).
+            // A lower bound on the hottest particle's disc as `disc` sums it (the floor, with no
+            // `above`): the mean of the particles surely in it (well inside the radius and in the
+            // bins `disc` reads), or the coolest particle of the rim, whose membership the two
+            // sums' rounding could decide apart, whichever is lower (a mean of the disc's
+            // particles is at least the smaller of those two), less a margin. Summed relative
+            // to the hottest temperature, as `disc` sums (every term at most zero), block by
+            // block: any order of such a sum rounds it by a few ulps of |mean| + |ref - mean|
+            // per particle, and a millionth of that is far beyond. A NaN in either gives no
+            // bound (the search is not narrowed).
             const vector c = x[hottest];
             const double ref = std::isfinite(double(T[hottest])) ? double(T[hottest]) : 0.0;
+            const double r2_in = r2 * (1 - 1e-9), r2_out = r2 * (1 + 1e-9);
+            std::array<std::size_t, dim> at_hottest{};
+            for (int d = 0; d < dim; ++d) at_hottest[d] = bin_of(c, d);
             detail::for_each_block_of(*near_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-                double mass = 0, excess = 0;
+                double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
                 for (std::size_t i = first; i < last; ++i) {
-                    if (double((x[i] - c).squaredNorm()) > r2) continue;
+                    const double d2 = double((x[i] - c).squaredNorm());
+                    if (!(d2 <= r2_out)) continue;  // a NaN place too
+                    if (d2 > r2_in) {
+                        rim = std::isnan(double(T[i])) || std::isnan(rim) ? std::numeric_limits<double>::quiet_NaN()
+                                                                         : std::min(rim, double(T[i]));
+                        continue;
+                    }
+                    bool near = true;  // in the 3^dim bins around the hottest particle's, as `disc` reads
+                    for (int d = 0; d < dim; ++d) {
+                        const std::size_t k = bin_of(x[i], d);
+                        near = near && k + 1 >= at_hottest[d] && k <= at_hottest[d] + 1;
+                    }
+                    if (!near) continue;
                     mass += double(m[i]);
                     excess += double(m[i]) * (double(T[i]) - ref);
                 }
                 block_mass[b] = mass;
                 block_excess[b] = excess;
+                block_ring[b] = rim;
             });
             GIMLET_OMP(barrier)
             GIMLET_OMP(single)
             {
-                double mass = 0, excess = 0;
-                for (std::size_t b = 0; b < blocks; ++b) mass += block_mass[b], excess += block_excess[b];
-                const double estimate = ref + excess / mass;
-                // Its terms share one sign, so any order of the sum rounds it by a few ulps of
-                // |estimate| + |ref - estimate| per particle: a millionth of that is far beyond.
-                if (std::isfinite(estimate)) hot_floor = estimate - 1e-6 * (std::abs(estimate) + std::abs(ref - estimate));
+                double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
+                for (std::size_t b = 0; b < blocks; ++b) {
+                    mass += block_mass[b], excess += block_excess[b];
+                    rim = std::isnan(block_ring[b]) || std::isnan(rim) ? block_ring[b] + rim : std::min(rim, block_ring[b]);
+                }
+                const double bound = std::min(ref + excess / mass, rim);
+                if (std::isfinite(bound) && !std::isnan(rim)) hot_floor = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
             }
             // The bins holding a particle at least hot_floor, and the box of those particles.
             detail::for_each_block_of(*mark_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
                 vector hot_lo_b = x[hottest], hot_hi_b = x[hottest];
+                std::uint8_t* hot_row = hot_bin.data() + b * total;
                 for (std::size_t i = first; i < last; ++i) {
                     if (!(double(T[i]) >= hot_floor)) continue;
-                    hot_lo_b = hot_lo_b.cwiseMin(x[i]), hot_hi_b = hot_hi_b.cwiseMax(x[i]);
                     std::array<std::size_t, dim> at{};
-                    for (int d = 0; d < dim; ++d) at[d] = bin_of(x[i], d);
-                    std::atomic_ref<std::uint8_t>(hot_bin[flat(at)]).store(1, std::memory_order_relaxed);
+                    bool inside = true;  // a place in the bins (not NaN)
+                    for (int d = 0; d < dim; ++d) {
+                        const double q = double(x[i][d] - lo[d]) / radius;  // bin_of's quotient
+                        inside = inside && q >= 0 && q < double(bins[d]);
+                        at[d] = inside ? std::size_t(q) : 0;
+                    }
+                    if (!inside) continue;
+                    hot_lo_b = hot_lo_b.cwiseMin(x[i]), hot_hi_b = hot_hi_b.cwiseMax(x[i]);
+                    hot_row[flat(at)] = 1;
                 }
                 block_hot_lo[b] = hot_lo_b;
                 block_hot_hi[b] = hot_hi_b;
@@ -397,7 +429,9 @@ template <class Solver>
                     std::array<std::size_t, dim> from{}, to{};
                     for (int d = 0; d < dim; ++d) from[d] = bin_of(hot_lo, d), to[d] = bin_of(hot_hi, d);
                     for_cells(from, to, [&](const std::array<std::size_t, dim>& h) {
-                        if (!hot_bin[flat(h)]) return;
+                        bool hot = false;
+                        for (std::size_t b = 0; b < blocks; ++b) hot = hot || hot_bin[b * total + flat(h)];
+                        if (!hot) return;
                         std::array<std::size_t, dim> a{}, z{};
                         for (int d = 0; d < dim; ++d) a[d] = h[d] >= 2 ? h[d] - 2 : 0, z[d] = std::min(h[d] + 2, bins[d] - 1);
                         for_cells(a, z, [&](const std::array<std::size_t, dim>& k) { keep_bin[flat(k)] = 1; });
