@@ -98,9 +98,12 @@ template <class Solver>
     // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
     const int threads = detail::threads_of(s);
     const std::size_t blocks = detail::observer_blocks(n, threads);
-    // The discs sought are hotter than this (NaN and +infinity ignored, as documented).
+    // The discs sought are hotter than this (NaN and +infinity ignored, as documented). With
+    // one (a tracked peak), the bins kept are found from the box of the particles hotter than
+    // it; without, from a lower bound on the hottest disc (`refine`, below).
     const double wanted =
         above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
+    const bool tracked = wanted > -std::numeric_limits<double>::infinity();
 
     // The passes run in one parallel region (below), with barriers between them: where idle
     // threads sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against
@@ -280,7 +283,7 @@ template <class Solver>
             for (std::size_t i = first; i < last; ++i) {
                 lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
                 if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
-                if (double(T[i]) > wanted) {
+                if (tracked && double(T[i]) > wanted) {
                     hot_lo_b = hot ? vector(hot_lo_b.cwiseMin(x[i])) : x[i];
                     hot_hi_b = hot ? vector(hot_hi_b.cwiseMax(x[i])) : x[i];
                     hot = true;
@@ -326,7 +329,7 @@ template <class Solver>
                     // nothing is sorted (the result names none). A caller that tracks a running
                     // peak meets this in every step until the material heats past it.
                     if (double(T[hottest]) > wanted) {
-                        if (wanted > -std::numeric_limits<double>::infinity()) {
+                        if (tracked) {
                             // The box of the particles hotter than `wanted` (the hottest one among them).
                             vector hot_lo = x[hottest], hot_hi = x[hottest];
                             for (std::size_t b = 0; b < blocks; ++b)
@@ -367,8 +370,8 @@ template <class Solver>
                     const double d2 = double((x[i] - c).squaredNorm());
                     if (!(d2 <= r2_out)) continue;  // a NaN place too
                     if (d2 > r2_in) {
-                        rim = std::isnan(double(T[i])) || std::isnan(rim) ? std::numeric_limits<double>::quiet_NaN()
-                                                                         : std::min(rim, double(T[i]));
+                        // A NaN stays (std::min would drop it): the single below then gives no bound.
+                        if (!std::isnan(rim)) rim = std::isnan(double(T[i])) ? double(T[i]) : std::min(rim, double(T[i]));
                         continue;
                     }
                     bool near = true;  // in the 3^dim bins around the hottest particle's, as `disc` reads
@@ -388,12 +391,14 @@ template <class Solver>
             GIMLET_OMP(single)
             {
                 double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
+                bool nan_rim = false;
                 for (std::size_t b = 0; b < blocks; ++b) {
                     mass += block_mass[b], excess += block_excess[b];
-                    rim = std::isnan(block_ring[b]) || std::isnan(rim) ? block_ring[b] + rim : std::min(rim, block_ring[b]);
+                    if (std::isnan(block_ring[b])) nan_rim = true;
+                    else rim = std::min(rim, block_ring[b]);
                 }
                 const double bound = std::min(ref + excess / mass, rim);
-                if (std::isfinite(bound) && !std::isnan(rim)) hot_floor = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
+                if (std::isfinite(bound) && !nan_rim) hot_floor = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
             }
             // The bins holding a particle at least hot_floor, and the box of those particles.
             detail::for_each_block_of(*mark_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {

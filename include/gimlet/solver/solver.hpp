@@ -398,6 +398,13 @@ private:
     }
     // The same, for the particles of the slabs whose stencils can reach a node row flagged in
     // `rows` (slab_schedule::for_each_reaching).
+    // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
+    // or rows given to its view) must be one flag per row of the last axis: `what` names them.
+    void require_row_flags(const std::vector<std::uint8_t>& rows, const char* what) const {
+        const auto layers = static_cast<std::size_t>(grid_.nodes(dim - 1));
+        require(rows.size() == layers, what, double(rows.size()),
+                std::to_string(layers) + ": one flag per row of nodes along the last axis");
+    }
     template <class F>
     void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f) {
         slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
@@ -476,9 +483,7 @@ private:
         void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
         template <class F>
         void operator()(const std::vector<std::uint8_t>& rows, F&& f) const {
-            const auto layers = static_cast<std::size_t>(self->grid_.nodes(dim - 1));
-            require(rows.size() == layers, "rows given to for_each_particle_by_slab (their count)", double(rows.size()),
-                    std::to_string(layers) + ": one flag per row of nodes along the last axis");
+            self->require_row_flags(rows, "rows given to for_each_particle_by_slab (their count)");
             self->for_each_particle_by_slab_reaching(rows, std::forward<F>(f));
         }
     };
@@ -541,8 +546,7 @@ private:
                           { q.split_rows() } -> std::same_as<const std::vector<std::uint8_t>&>;
                       }) {
             rows = &partition_.split_rows();
-            require(rows->size() == std::size_t(layers), "the partition's split_rows() size", double(rows->size()),
-                    std::to_string(layers) + ": one flag per row of nodes along the last axis");
+            require_row_flags(*rows, "the partition's split_rows() size");
         }
         // Whether particle i's stencil reaches a flagged row: its rows along the last axis start
         // at last_row and wrap only on a periodic axis (on a free one the stencil lies within the
