@@ -44,9 +44,9 @@ namespace gimlet::multi_field {
 enum class pass { decide, remap, trial, keep };
 
 
-/// The state of multi-field contact in a solver: per field and node the mass gradient (the
-/// scatter fills it), and per step the shared nodes, their fields' normals, each pair's normal
-/// and reach, and the pairs the deciding pass engaged. Only resolve() depends on the contact
+/// The state of multi-field contact in a solver: per step the shared nodes, their fields'
+/// normals (from the mass gradients there), each pair's normal and reach, and the pairs the
+/// deciding pass engaged. Only resolve() depends on the contact
 /// policy, so solvers that differ only in their law share the rest (gimlet::solver_core).
 template <Space S>
 class exchange {
@@ -54,10 +54,6 @@ public:
     using real = typename S::real;
     using vector = typename S::vector;
 
-    /// Room for `entries` node entries (fields x nodes) of mass gradient.
-    void allocate(std::size_t entries) { mass_gradient_.assign(entries, vector::Zero()); }
-    /// Per field and node, sum_p m_p G_ip: the scatter adds to it (zero it first).
-    [[nodiscard]] std::vector<vector>& mass_gradient() noexcept { return mass_gradient_; }
     /// Whether two or more fields have mass above the cut-off at `node`, as the step's
     /// find_shared_nodes found it (call that first).
     [[nodiscard]] bool shared(std::size_t node) const noexcept { return shared_index_[node] >= 0; }
@@ -65,7 +61,8 @@ public:
     // The nodes where two or more fields have mass above the cut-off, with each field's outward
     // normal, each pair's normal and each field's furthest particle centre along it
     // (contact::node_view::reach), from the positions at the start of the step. Only these
-    // nodes take part in contact, and the masses do not change within a step. Field f belongs
+    // nodes take part in contact, and the masses do not change within a step. mass[i] is
+    // particle i's mass, for the fields' mass gradients at these nodes. Field f belongs
     // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
     // each node of its stencil in turn, the index of the field entry its mass went to there
     // (field * nodes + node). for_each_particle(rows, f) calls f(i) for every particle whose
@@ -76,9 +73,9 @@ public:
     // each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
     // order, and each block fills its part. The arrays are those of one pass in node order,
     // whatever the thread count.
-    template <class Stencils, class Entries, class ForEach>
+    template <class Stencils, class Masses, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
-                           std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
+                           const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
                            int threads = 1, bool parallel = false) {
         const std::size_t nodes = grid.size(), fields_n = grid.field_count();
         constexpr std::size_t block = 4096;
@@ -147,16 +144,8 @@ public:
                     shared_[at.nodes] = {node, first, k, at.pairs};
                     for (std::size_t j = 0; j < k; ++j) {
                         shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
-                        const vector& g = mass_gradient_[shared_field_[first + j] * nodes + node];
-                        const real len = g.norm();
-                        shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+                        shared_normal_[first + j] = vector::Zero();  // the mass gradient's sum, below
                     }
-                    // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
-                    for (std::size_t a = 0; a < k; ++a)
-                        for (std::size_t b2 = 0; b2 < k; ++b2)
-                            shared_pair_normal_[at.pairs + a * k + b2] =
-                                a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2])
-                                        : vector::Zero();
                     ++at.nodes, at.fields += k, at.pairs += k * k;
                 }
             }
@@ -170,6 +159,47 @@ public:
         const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
         shared_row_.assign(rows, 0);
         for (const shared_node& sn : shared_) shared_row_[std::size_t(grid.layer(sn.node))] = 1;
+        // Each shared field's mass gradient sum_p m_p G_ip, at the shared nodes only (the only
+        // place it is read): summed into shared_normal_ by the particles that reach a shared
+        // row, slab by slab as the scatter visits them, so each node's sum has the scatter's
+        // terms in the scatter's order, whatever the thread count. G is the gradient with
+        // respect to the particle position, so the sum points out of the body (docs/physics.md
+        // section 3; Bardenhagen et al. 2000, eq. 16).
+        for_each_particle(shared_row_, [&](std::size_t i) {
+            auto entry = entries_of(i);
+            const real mp = mass[i];
+            stencils[i].for_each([&](std::size_t node, real, const vector& g) {
+                const std::size_t e = entry(node);  // asked at every node, in order
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0) return;
+                const shared_node& sn = shared_[std::size_t(s)];
+                const std::size_t field = (e - node) / nodes;
+                for (std::size_t a = 0; a < sn.count; ++a)
+                    if (shared_field_[sn.first_field + a] == field) {
+                        shared_normal_[sn.first_field + a] += mp * g;
+                        return;
+                    }  // else below the cut-off at this node
+            });
+        });
+        // The fields' unit normals and each pair's normal, node by node.
+        const auto shared_n = static_cast<std::ptrdiff_t>(shared_.size());
+        gimlet::detail::thread_shares normal_shares(shared_n, threads, parallel && shared_n >= std::ptrdiff_t(block));
+        GIMLET_OMP(parallel num_threads(normal_shares.team()))
+        for (auto claimed = normal_shares.start(); normal_shares.claim(claimed);)
+            for (std::ptrdiff_t s = claimed.first, end = claimed.last; s < end; ++s) {
+                const shared_node& sn = shared_[std::size_t(s)];
+                const std::size_t first = sn.first_field, k = sn.count;
+                for (std::size_t j = 0; j < k; ++j) {
+                    const vector g = shared_normal_[first + j];
+                    const real len = g.norm();
+                    shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+                }
+                // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
+                for (std::size_t a = 0; a < k; ++a)
+                    for (std::size_t b2 = 0; b2 < k; ++b2)
+                        shared_pair_normal_[sn.first_pair + a * k + b2] =
+                            a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2]) : vector::Zero();
+            }
         // Particles of one node are visited by one thread at a time (slab colouring), and a
         // maximum does not depend on the order: the result is the same for any thread count.
         for_each_particle(shared_row_, [&](std::size_t i) {
@@ -322,7 +352,7 @@ private:
         }
     }
 
-    // Per field and node, the mass gradient; the nodes shared by two or more fields
+    // The nodes shared by two or more fields
     // (find_shared_nodes) with, per shared node, its fields, their bodies and their normals
     // (shared_field_, shared_owner_, shared_normal_ from first_field), its pairs' normals and
     // reaches (count x count from first_pair) and the pairs engaged by the step's deciding pass;
@@ -330,7 +360,6 @@ private:
     struct shared_node {
         std::size_t node, first_field, count, first_pair;
     };
-    std::vector<vector> mass_gradient_;
     std::vector<std::ptrdiff_t> shared_index_;
     std::vector<std::uint8_t> shared_row_;  // per node row of the last axis: whether it has a shared node
     std::vector<shared_node> shared_;

@@ -832,10 +832,7 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
                                     " node entries, fields x nodes)",
                                 std::to_string(options_.consistent_mass_iterations),
                                 "0 on a grid of more than 4294967295 node entries");
-    if constexpr (multi_field) {
-        grid_.set_field_count(fields);
-        exchange_.allocate(grid_.entries());
-    }
+    if constexpr (multi_field) grid_.set_field_count(fields);
     // Which components of a node's force the walls leave free (1) or take (0): the projection
     // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
     wall_free_.assign(grid_.entries(), vector::Ones());
@@ -928,7 +925,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::begin_step(real dt, phase_
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
-    exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_, fields_per_body,
+    exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
+                                particles_.template column<fields::mass>(), fields_per_body,
                                 [&](std::size_t i) { return entries(i); },
                                 [&](const std::vector<std::uint8_t>& rows, auto&& f) {
                                     for_each_particle_by_slab_reaching(rows, f);

@@ -23,8 +23,6 @@ template <bool Forces>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
     const auto& m = particles_.template column<fields::mass>();
     const auto& v = particles_.template column<fields::velocity>();
-    [[maybe_unused]] auto& mass_gradient = exchange_.mass_gradient();
-    if constexpr (multi_field) fill_entries(mass_gradient, vector::Zero());
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
     for_each_particle_by_slab([&](std::size_t i) {
@@ -43,9 +41,6 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
             const std::size_t e = at(node);
             grid_.mass[e] += w * mp;
             grid_.momentum[e] += w * mv;
-            // G is the gradient with respect to the particle position, so sum m_p G_ip points
-            // out of the body (docs/physics.md section 3; Bardenhagen et al. 2000, eq. 16).
-            if constexpr (multi_field) mass_gradient[e] += mp * g;
             if constexpr (Forces) {
                 grid_.force[e] -= vs * g;
                 if (loaded) grid_.force[e] += w * mb;
