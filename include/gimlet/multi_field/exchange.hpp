@@ -66,8 +66,9 @@ public:
     // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
     // each node of its stencil in turn, the index of the field entry its mass went to there
     // (field * nodes + node). for_each_particle(rows, f) calls f(i) for every particle whose
-    // stencil reaches a node row r (of the last axis) with rows[r] != 0, slab by slab as the
-    // scatter does (it may call it for others too).
+    // stencil reaches a node row r (of the last axis) with rows[r] != 0 (it may call it for
+    // others too), never for two particles that share a node at once, and for those of each
+    // node in the scatter's order: the mass gradients are sums in that order.
     //
     // The pass over every node runs in blocks of nodes, on `threads` threads where `parallel`:
     // each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
