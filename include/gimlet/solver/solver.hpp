@@ -386,7 +386,7 @@ private:
         const auto p = particles_[i];
         auto& st = stencils_[i];
         st.template compute_with<Sh>(grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
-        slabs_.assign(i, st.last_row);
+        slabs_.assign(i, st.first_row);
     }
 
     // f(i) for every particle, slab by slab and colour by colour (detail::slab_schedule): every
@@ -549,10 +549,10 @@ private:
             require_row_flags(*rows, "the partition's split_rows() size");
         }
         // Whether particle i's stencil reaches a flagged row: its rows along the last axis start
-        // at last_row and wrap only on a periodic axis (on a free one the stencil lies within the
+        // at first_row and wrap only on a periodic axis (on a free one the stencil lies within the
         // grid's ghost nodes), as grid::layer numbers them.
         auto reaches = [&](std::size_t i) {
-            for (int a = 0, r = stencils_[i].last_row; a < Sh::stencil; ++a, ++r) {
+            for (int a = 0, r = stencils_[i].first_row; a < Sh::stencil; ++a, ++r) {
                 if (r == layers) r = 0;
                 if ((*rows)[std::size_t(r)]) return true;
             }

@@ -25,7 +25,7 @@ struct stencil {
     std::array<std::array<real, W>, dim> w;      ///< 1-D weights
     std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
     std::array<real, dim> local;                 ///< particle position from the first node (cells)
-    int last_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
+    int first_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>
@@ -57,7 +57,7 @@ struct stencil {
     /// and the gradients from cell units to 1/m.
     void finish_axis(const grid<S>& g, int d, real xc, int first) {
         local[d] = xc - real(first);
-        last_row = g.template axis_offsets<W>(d, first, offset[d].data());
+        first_row = g.template axis_offsets<W>(d, first, offset[d].data());
         for (int a = 0; a < W; ++a) dw[d][a] *= g.inv_cell();
     }
 
