@@ -18,6 +18,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "tag_partition.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -55,20 +57,8 @@ struct normal_recorder {
 };
 static_assert(gimlet::contact::NodeResolver<normal_recorder>);
 
-// A user's per-particle field: which half of its body a particle belongs to, set at t = 0.
-struct half {
-    template <class> using type = std::uint32_t;
-    static constexpr const char* name = "half";
-};
-// Splits each body into two fields by the particle's own tag.
-struct by_tag {
-    using required_fields = gimlet::field_list<half>;
-    static constexpr std::size_t fields_per_body = 2;
-    template <class P, class V>
-    [[nodiscard]] std::size_t side(const P& p, std::size_t, const V&) const {
-        return p.template get<half>();
-    }
-};
+using gimlet_multi_field_tests::by_tag;  // each body split into two fields by a tag
+using gimlet_multi_field_tests::half;
 
 // Along one axis: x_p - x_i in cells, the nearest image on a periodic axis of length `period`
 // cells (0: not periodic).
@@ -108,6 +98,16 @@ std::size_t check_normals(const std::vector<seen_node>& seen, const std::vector<
     return checked;
 }
 
+// 1 mm cells from the origin to `upper`, periodic across x, `along_y` along y.
+gimlet::grid_spec<S> grid(const vec& upper, gimlet::boundary along_y) {
+    gimlet::grid_spec<S> gs;
+    gs.lower = vec::Zero();
+    gs.upper = upper;
+    gs.cell = 1e-3;
+    gs.bc = {gimlet::boundary::periodic, along_y};
+    return gs;
+}
+
 template <class Solver>
 void step_and_check(Solver& sol, const std::vector<std::uint32_t>& field, double h, const vec& period,
                     const std::shared_ptr<seen_nodes>& seen, std::size_t at_least) {
@@ -133,12 +133,7 @@ TEST_CASE("contact normals: every shared node's is the mass gradient of all its 
     // `axis` and across the seam there.
     for (const int axis : {0, 1}) {
         DYNAMIC_SECTION("two bodies, periodic on both axes, an odd number of slabs, meeting across axis " << axis) {
-            gimlet::grid_spec<S> gs;
-            gs.lower = vec::Zero();
-            gs.upper = vec(0.043, 0.043);
-            gs.cell = h;
-            gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
-            gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
+            gimlet::scene::scene<S, gimlet::elastic_material> sc(grid(vec(0.043, 0.043), gimlet::boundary::periodic));
             vec mid(0.043, 0.043), start = vec::Zero(), v = vec::Zero();
             mid[axis] = start[axis] = 0.0215;
             v[axis] = 1.0;
@@ -161,12 +156,7 @@ TEST_CASE("contact normals: every shared node's is the mass gradient of all its 
     }
 
     SECTION("one body split into two fields by a tag") {
-        gimlet::grid_spec<S> gs;
-        gs.lower = vec::Zero();
-        gs.upper = vec(0.040, 0.060);
-        gs.cell = h;
-        gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
-        gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
+        gimlet::scene::scene<S, gimlet::elastic_material> sc(grid(vec(0.040, 0.060), gimlet::boundary::free));
         sc.add_body(gimlet::scene::box<S>(vec(0.0, 0.010), vec(0.040, 0.050)), mat, vec::Zero(), 2, "block");
         normal_recorder law;
         const auto seen = law.seen;

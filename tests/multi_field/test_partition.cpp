@@ -19,6 +19,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "tag_partition.hpp"
+
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
@@ -63,11 +65,7 @@ gimlet::scene::scene<S, gimlet::elastic_material> blocks(bool one_body) {
     return sc;
 }
 
-// A user's per-particle field: which half of its body a particle belongs to, set at t = 0.
-struct half {
-    template <class> using type = std::uint32_t;
-    static constexpr const char* name = "half";
-};
+using gimlet_multi_field_tests::half;  // a user's per-particle field (tag_partition.hpp)
 
 // Splits each body into two fields by the side of y_mid a NODE lies on, whoever scatters there:
 // no node ever holds both fields of a body.
@@ -101,15 +99,7 @@ struct by_node_side_rows : by_node_side {
     std::shared_ptr<std::atomic<std::uint64_t>> calls = std::make_shared<std::atomic<std::uint64_t>>(0);  // side()'s
 };
 
-// Splits each body by the particle's own tag: the two halves meet, as two bodies would.
-struct by_tag {
-    using required_fields = gimlet::field_list<half>;
-    static constexpr std::size_t fields_per_body = 2;
-    template <class P, class V>
-    [[nodiscard]] std::size_t side(const P& p, std::size_t, const V&) const {
-        return p.template get<half>();
-    }
-};
+using gimlet_multi_field_tests::by_tag;  // each body split by the tag (tag_partition.hpp)
 
 // A partition that answers out of range for one particle.
 struct broken {
