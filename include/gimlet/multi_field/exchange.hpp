@@ -46,8 +46,8 @@ enum class pass { decide, remap, trial, keep };
 
 /// The state of multi-field contact in a solver: per step the shared nodes, their fields'
 /// normals (from the mass gradients there), each pair's normal and reach, and the pairs the
-/// deciding pass engaged. Only resolve() depends on the contact
-/// policy, so solvers that differ only in their law share the rest (gimlet::solver_core).
+/// deciding pass engaged. Only resolve() depends on the contact policy, so solvers that differ
+/// only in their law share the rest (gimlet::solver_core).
 template <Space S>
 class exchange {
 public:
@@ -353,11 +353,10 @@ private:
         }
     }
 
-    // The nodes shared by two or more fields
-    // (find_shared_nodes) with, per shared node, its fields, their bodies and their normals
-    // (shared_field_, shared_owner_, shared_normal_ from first_field), its pairs' normals and
-    // reaches (count x count from first_pair) and the pairs engaged by the step's deciding pass;
-    // scratch space for one node's masses and momenta.
+    // The nodes shared by two or more fields (find_shared_nodes) with, per shared node, its
+    // fields, their bodies and their normals (shared_field_, shared_owner_, shared_normal_ from
+    // first_field), its pairs' normals and reaches (count x count from first_pair) and the pairs
+    // engaged by the step's deciding pass; scratch space for one node's masses and momenta.
     struct shared_node {
         std::size_t node, first_field, count, first_pair;
     };
