@@ -60,6 +60,15 @@ std::vector<solver> on_1_2_3_threads() {
     return runs;
 }
 
+// The index of the particle of `ps` nearest to `at` (the first of equals).
+template <class Store>
+std::size_t nearest(const Store& ps, const S::vector& at) {
+    std::size_t k = 0;
+    for (std::size_t i = 1; i < ps.size(); ++i)
+        if ((ps[i].template get<position>() - at).squaredNorm() < (ps[k].template get<position>() - at).squaredNorm()) k = i;
+    return k;
+}
+
 // A fixed pseudo-random sequence of doubles in [0, 1) (a 64-bit linear congruential generator,
 // its top 53 bits): the same numbers on every machine.
 struct sequence {
@@ -287,9 +296,7 @@ TEST_CASE("hot_spot: sought above a peak, the discs near the edge of the sorted 
     for (const S::vector& side : {S::vector(1, 0), S::vector(-1, 0), S::vector(0, 1), S::vector(0, -1)}) {
         for (std::size_t k = 0; k < runs.size(); ++k) {
             auto& ps = runs[k].particles();
-            std::size_t h = 0;
-            for (std::size_t i = 1; i < ps.size(); ++i)
-                if ((ps[i].get<position>() - middle).squaredNorm() < (ps[h].get<position>() - middle).squaredNorm()) h = i;
+            const std::size_t h = nearest(ps, middle);
             const S::vector at = ps[h].get<position>();
             for (std::size_t i = 0; i < ps.size(); ++i)
                 ps[i].get<temperature>() = (ps[i].get<position>() - at).dot(side) >= 0 ? 499.9 : 300.0;
@@ -312,12 +319,7 @@ TEST_CASE("hot_spot: sought above a peak, the discs near the edge of the sorted 
     // (the upper block), where the hottest disc is. The box must hold both.
     for (std::size_t k = 0; k < runs.size(); ++k) {
         auto& ps = runs[k].particles();
-        std::size_t a = 0, b = 0;
-        const S::vector lower(3.1e-3, 5.1e-3), upper(16.1e-3, 26.1e-3);
-        for (std::size_t i = 1; i < ps.size(); ++i) {
-            if ((ps[i].get<position>() - lower).squaredNorm() < (ps[a].get<position>() - lower).squaredNorm()) a = i;
-            if ((ps[i].get<position>() - upper).squaredNorm() < (ps[b].get<position>() - upper).squaredNorm()) b = i;
-        }
+        const std::size_t a = nearest(ps, S::vector(3.1e-3, 5.1e-3)), b = nearest(ps, S::vector(16.1e-3, 26.1e-3));
         for (std::size_t i = 0; i < ps.size(); ++i)
             ps[i].get<temperature>() = (ps[i].get<position>() - ps[b].get<position>()).norm() < 3e-3 ? 499.9 : 300.0;
         ps[a].get<temperature>() = 2000.0;
@@ -343,17 +345,11 @@ TEST_CASE("hot_spot: a disc between two hot particles, in a bin of neither", "[d
     auto sol = two_blocks(2, 2);
     auto& ps = sol.particles();
     const double radius = 0.75e-3;
-    auto nearest = [&](const S::vector& at) {
-        std::size_t k = 0;
-        for (std::size_t i = 1; i < ps.size(); ++i)
-            if ((ps[i].get<position>() - at).squaredNorm() < (ps[k].get<position>() - at).squaredNorm()) k = i;
-        return k;
-    };
     int off_centre = 0;
     for (const S::vector& step : {S::vector(1e-3, 0), S::vector(0, 1e-3)})
         for (int shift = 0; shift < 6; ++shift) {
             const S::vector first = S::vector(6.1e-3, 22.1e-3) + 0.5e-3 * shift * step / step.norm();
-            const std::size_t a = nearest(first), b = nearest(first + step);
+            const std::size_t a = nearest(ps, first), b = nearest(ps, S::vector(first + step));
             for (std::size_t i = 0; i < ps.size(); ++i) ps[i].get<temperature>() = 300.0;
             ps[a].get<temperature>() = 2000.0;
             ps[b].get<temperature>() = 2000.0;

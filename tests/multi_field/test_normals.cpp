@@ -60,20 +60,20 @@ static_assert(gimlet::contact::NodeResolver<normal_recorder>);
 using gimlet_multi_field_tests::by_tag;  // each body split into two fields by a tag
 using gimlet_multi_field_tests::half;
 
+constexpr double h = 1e-3;  // cell (m)
+
 // Along one axis: x_p - x_i in cells, the nearest image on a periodic axis of length `period`
 // cells (0: not periodic).
-double cells_between(double xp, double xi, double h, double period) {
+double cells_between(double xp, double xi, double period) {
     double r = (xp - xi) / h;
     if (period > 0) r -= period * std::round(r / period);
     return r;
 }
 
 // Every recorded node's normals against sum_p m_p G_ip over every particle of the field, from
-// the particles as they were before the step (x, m, field of each). Returns the nodes checked.
-template <class Solver>
+// the particles as they were before the step (x, m, field of each). Returns the normals checked.
 std::size_t check_normals(const std::vector<seen_node>& seen, const std::vector<vec>& x, const std::vector<double>& m,
-                          const std::vector<std::uint32_t>& field, const std::vector<vec>& half_width, double h,
-                          const vec& period) {
+                          const std::vector<std::uint32_t>& field, const std::vector<vec>& half_width, const vec& period) {
     std::size_t checked = 0;
     for (const seen_node& node : seen) {
         REQUIRE(node.field.size() >= 2);
@@ -84,7 +84,7 @@ std::size_t check_normals(const std::vector<seen_node>& seen, const std::vector<
                 double w[2], dw[2];
                 for (int d = 0; d < 2; ++d) {
                     const double l = half_width[p][d] / h;
-                    gimlet::shape::detail::gimp_kernel(cells_between(x[p][d], node.position[d], h, period[d]), l, 1 / l, w[d], dw[d]);
+                    gimlet::shape::detail::gimp_kernel(cells_between(x[p][d], node.position[d], period[d]), l, 1 / l, w[d], dw[d]);
                 }
                 sum += m[p] * vec(dw[0] / h * w[1], w[0] * dw[1] / h);
             }
@@ -98,18 +98,18 @@ std::size_t check_normals(const std::vector<seen_node>& seen, const std::vector<
     return checked;
 }
 
-// 1 mm cells from the origin to `upper`, periodic across x, `along_y` along y.
+// Cells of side h from the origin to `upper`, periodic across x, `along_y` along y.
 gimlet::grid_spec<S> grid(const vec& upper, gimlet::boundary along_y) {
     gimlet::grid_spec<S> gs;
     gs.lower = vec::Zero();
     gs.upper = upper;
-    gs.cell = 1e-3;
+    gs.cell = h;
     gs.bc = {gimlet::boundary::periodic, along_y};
     return gs;
 }
 
 template <class Solver>
-void step_and_check(Solver& sol, const std::vector<std::uint32_t>& field, double h, const vec& period,
+void step_and_check(Solver& sol, const std::vector<std::uint32_t>& field, const vec& period,
                     const std::shared_ptr<seen_nodes>& seen, std::size_t at_least) {
     REQUIRE(sol.particles().size() > 4096);  // above the size at which the passes run on the threads
     const std::vector<vec> x = sol.particles().template column<f::position>();
@@ -117,14 +117,13 @@ void step_and_check(Solver& sol, const std::vector<std::uint32_t>& field, double
     const std::vector<vec> l = sol.particles().template column<f::domain_half_width>();
     sol.step(1e-7);
     REQUIRE(!seen->nodes.empty());
-    CHECK(check_normals<Solver>(seen->nodes, x, m, field, l, h, period) >= at_least);
+    CHECK(check_normals(seen->nodes, x, m, field, l, period) >= at_least);
 }
 
 }  // namespace
 
 TEST_CASE("contact normals: every shared node's is the mass gradient of all its field's particles",
           "[multi_field][contact][threads]") {
-    const double h = 1e-3;
     const auto mat = gimlet::make_elastic_material(1000, 1e6, 0.3);
     gimlet::solver_options<S> opt;
     opt.threads = 2;
@@ -144,7 +143,7 @@ TEST_CASE("contact normals: every shared node's is the mass gradient of all its 
             gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, normal_recorder> sol(sc, opt, law);
             const std::vector<std::uint32_t> body = sol.particles().column<f::body>();
             // Both meeting lines, every node of each (43 along), both fields: at least 4 x 43.
-            step_and_check(sol, body, h, vec(43, 43), seen, 4 * 43);
+            step_and_check(sol, body, vec(43, 43), seen, 4 * 43);
             bool seam = false, middle = false;
             for (const seen_node& n : seen->nodes) {
                 seam = seam || n.position[axis] < 2 * h || n.position[axis] > 0.043 - 2 * h;
@@ -169,6 +168,6 @@ TEST_CASE("contact normals: every shared node's is the mass gradient of all its 
             tag[i] = x[i][1] < 0.0305 ? 0 : 1;  // the halves meet at y = 30.5 mm, off the grid lines
             field[i] = 2 * sol.particles().column<f::body>()[i] + tag[i];
         }
-        step_and_check(sol, field, h, vec(40, 0), seen, 2 * 40);
+        step_and_check(sol, field, vec(40, 0), seen, 2 * 40);
     }
 }

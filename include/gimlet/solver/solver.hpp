@@ -396,8 +396,6 @@ private:
     void for_each_particle_by_slab(F&& f) {
         slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
     }
-    // The same, for the particles of the slabs whose stencils can reach a node row flagged in
-    // `rows` (slab_schedule::for_each_reaching).
     // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
     // or rows given to its view) must be one flag per row of the last axis: `what` names them.
     void require_row_flags(const std::vector<std::uint8_t>& rows, const char* what) const {
@@ -405,6 +403,8 @@ private:
         require(rows.size() == layers, what, double(rows.size()),
                 std::to_string(layers) + ": one flag per row of nodes along the last axis");
     }
+    // The same as for_each_particle_by_slab, for the particles of the slabs whose stencils can
+    // reach a node row flagged in `rows` (slab_schedule::for_each_reaching).
     template <class F>
     void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f) {
         slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
