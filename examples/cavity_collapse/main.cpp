@@ -32,6 +32,7 @@
 #include "common/cli.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -77,19 +78,42 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
     os << '\n';
 }
 
-// Particle map for the PNG figures: position, pressure, temperature.
+// Particle map for the PNG figures: position, pressure, temperature, body. The numbers are
+// exact_numbers' (std::to_chars' shortest text that reads back to the same double), formatted
+// straight into a buffer, a block of consecutive particles on each of the run's threads, and
+// written in block order: the bytes a stream through exact_numbers writes, particle by particle,
+// in a fraction of its time, and on every thread (a serial pass left the others idle).
 template <class Solver>
 void write_map(const std::filesystem::path& file, const Solver& sol) {
-    std::ofstream os(file);
-    gimlet::io::exact_numbers(os);
-    os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
     const auto& ps = sol.particles();
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-        const auto p = ps[i];
-        const auto& x = p.template get<gimlet::fields::position>();
-        os << x[0] * 1e3 << ',' << x[1] * 1e3 << ',' << gimlet::mean_pressure(p) * 1e-6 << ','
-           << p.template get<gimlet::fields::temperature>() << ',' << p.template get<gimlet::fields::body>() << '\n';
+    const std::size_t n = ps.size();
+    const int threads = gimlet::detail::threads_of(sol);  // as the library's observers take them
+    const std::size_t blocks = n >= 4096 && threads > 1 ? std::size_t(threads) : 1;
+    const std::size_t size = (n + blocks - 1) / blocks;
+    std::vector<std::string> text(blocks);
+    GIMLET_OMP(parallel for schedule(static, 1) num_threads(int(blocks)))
+    for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(blocks); ++b) {
+        std::string& t = text[std::size_t(b)];
+        char buf[32];
+        auto put = [&](auto v, char end) {
+            t.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+            t += end;
+        };
+        const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
+        t.reserve((last - first) * 80);
+        for (std::size_t i = first; i < last; ++i) {
+            const auto p = ps[i];
+            const auto& x = p.template get<gimlet::fields::position>();
+            put(double(x[0] * 1e3), ',');
+            put(double(x[1] * 1e3), ',');
+            put(double(gimlet::mean_pressure(p) * 1e-6), ',');
+            put(double(p.template get<gimlet::fields::temperature>()), ',');
+            put(p.template get<gimlet::fields::body>(), '\n');
+        }
     }
+    std::ofstream os(file);
+    os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
+    for (const auto& t : text) os.write(t.data(), std::streamsize(t.size()));
     if (!os) throw std::runtime_error("could not write " + file.string());
 }
 
