@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -82,7 +83,8 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
 // exact_numbers' (std::to_chars' shortest text that reads back to the same double), formatted
 // straight into a buffer, a block of consecutive particles on each of the run's threads, and
 // written in block order: the bytes a stream through exact_numbers writes, particle by particle,
-// in a fraction of its time, and on every thread (a serial pass left the others idle).
+// in a fraction of its time, and on every thread (a serial pass left the others idle). The
+// whole map is held as text until it is written: about 80 bytes a particle.
 template <class Solver>
 void write_map(const std::filesystem::path& file, const Solver& sol) {
     const auto& ps = sol.particles();
@@ -91,26 +93,35 @@ void write_map(const std::filesystem::path& file, const Solver& sol) {
     const std::size_t blocks = n >= 4096 && threads > 1 ? std::size_t(threads) : 1;
     const std::size_t size = (n + blocks - 1) / blocks;
     std::vector<std::string> text(blocks);
+    // An exception must not leave the parallel region (that ends the program): a block's
+    // (an allocation that fails) is kept and thrown after it.
+    std::vector<std::exception_ptr> failed(blocks);
     GIMLET_OMP(parallel for schedule(static, 1) num_threads(int(blocks)))
     for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(blocks); ++b) {
-        std::string& t = text[std::size_t(b)];
-        char buf[32];
-        auto put = [&](auto v, char end) {
-            t.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-            t += end;
-        };
-        const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
-        t.reserve((last - first) * 80);
-        for (std::size_t i = first; i < last; ++i) {
-            const auto p = ps[i];
-            const auto& x = p.template get<gimlet::fields::position>();
-            put(double(x[0] * 1e3), ',');
-            put(double(x[1] * 1e3), ',');
-            put(double(gimlet::mean_pressure(p) * 1e-6), ',');
-            put(double(p.template get<gimlet::fields::temperature>()), ',');
-            put(p.template get<gimlet::fields::body>(), '\n');
+        try {
+            std::string& t = text[std::size_t(b)];
+            char buf[32];
+            auto put = [&](auto v, char end) {
+                t.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+                t += end;
+            };
+            const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
+            t.reserve((last - first) * 80);
+            for (std::size_t i = first; i < last; ++i) {
+                const auto p = ps[i];
+                const auto& x = p.template get<gimlet::fields::position>();
+                put(double(x[0] * 1e3), ',');
+                put(double(x[1] * 1e3), ',');
+                put(double(gimlet::mean_pressure(p) * 1e-6), ',');
+                put(double(p.template get<gimlet::fields::temperature>()), ',');
+                put(p.template get<gimlet::fields::body>(), '\n');
+            }
+        } catch (...) {
+            failed[std::size_t(b)] = std::current_exception();
         }
     }
+    for (const auto& e : failed)
+        if (e) std::rethrow_exception(e);
     std::ofstream os(file);
     os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
     for (const auto& t : text) os.write(t.data(), std::streamsize(t.size()));

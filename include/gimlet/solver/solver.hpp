@@ -520,8 +520,9 @@ private:
         // A partition that says it splits nothing this step (multi_field::Partition's optional
         // splits(), asked once a step: split_now_) puts every particle in its body's first field
         // at once: every side 0, which they all still are after a step that split nothing (the
-        // fill, one thread over 9 bytes a particle, ran every such step: about 0.1 ms at 216,000
-        // particles, a serial part of the step; docs/performance.md).
+        // fill, one thread over a byte per stencil node of every particle, ran every such step:
+        // about 0.1 ms at 216,000 particles in 2-D, a serial part of the step;
+        // docs/performance.md).
         if (!split_now_) {
             if (!sides_zero_) std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, stencil_type::nodes>{});
             sides_zero_ = true;
