@@ -131,6 +131,12 @@ public:
     [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
+    /// The threads the solver's parallel loops use: options().threads where it is positive,
+    /// otherwise OpenMP's default (1 without OpenMP). An observer with a parallel pass of its
+    /// own takes as many, as the library's diagnostics do.
+    [[nodiscard]] int threads() const noexcept {
+        return options_.threads > 0 ? options_.threads : detail::default_threads();
+    }
     /// The partition of bodies into velocity fields (multi_field::Partition).
     [[nodiscard]] const Part& partition() const noexcept { return partition_; }
     [[nodiscard]] real time() const noexcept { return time_; }
@@ -220,10 +226,6 @@ private:
                 return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), sides_[i].data(),
                                     cm_listed_ ? &cm_entry_[i * stencil_type::nodes] : nullptr};
         }
-    }
-
-    [[nodiscard]] int threads() const noexcept {
-        return options_.threads > 0 ? options_.threads : detail::default_threads();
     }
 
     // ---- the step -----------------------------------------------------------------------
