@@ -4,7 +4,8 @@
 # update with two particles per vector, throughput (the reference scene and the 2-D HMX step,
 # 1 and 2 threads, scaling with particle count), the per-phase roofline, strong scaling to the
 # machine's cores where it has 8 or more (benchmarks/scaling/many_cores.sh), the cost of each
-# effect, accuracy against time, and the flagship's outputs against outputs off. CSVs and
+# effect, accuracy against time, the flagship's outputs against outputs off, and its serial
+# share on 2 threads (benchmarks/scaling/serial_share.py, where perf may sample). CSVs and
 # Markdown tables go to results/bench/, plots to docs/perf_*.png (drawn with Debian's
 # /usr/bin/python3, which has matplotlib).
 #
@@ -169,7 +170,31 @@ load "outputs start"
     done
 } | tee "$out/outputs.csv"
 rm -rf "$fl_out"
-load "outputs end"
+load "outputs end / serial share start"
+# The flagship's serial share on 2 threads (docs/performance.md, "What limits scaling to 16
+# threads"): the samples of its first thread while the other slept, which cap what more
+# threads can give (Amdahl). It needs perf, and permission to sample.
+perf_works() {
+    local data
+    data=$(mktemp)
+    perf record -q -o "$data" -- true >/dev/null 2>&1
+    local rc=$?
+    rm -f "$data"
+    return $rc
+}
+if command -v perf >/dev/null && perf_works; then
+    ss_out=$(mktemp -d)
+    if [ "$quick" = 1 ]; then ss_args=(--cell 1 --end-us 6); else ss_args=(--cell 0.25 --end-us 12); fi
+    python3 benchmarks/scaling/serial_share.py -- "$flagship" --velocity 300 --radius 10 "${ss_args[@]}" \
+        --snapshot-every-us 0 --snapshots-after-contact-us 4 --no-figures --threads 2 --quiet \
+        --output "$ss_out/run" | tee "$out/serial_share.txt" \
+        || echo "bench.sh: benchmarks/scaling/serial_share.py failed (above); going on" >&2
+    rm -rf "$ss_out"
+else
+    echo "bench.sh: no perf, or no permission to sample: the serial share is skipped (scripts/setup.sh --bench installs perf)" \
+        | tee "$out/serial_share.txt"
+fi
+load "serial share end"
 plots="docs"
 [ "$quick" = 1 ] && plots="$out"
 "$python" benchmarks/report.py "$out" "$plots"

@@ -18,8 +18,9 @@ case "${1:-}" in
     # slowest tests and units; VTK's Python module reads our .vtp files back in the
     # independent-reader test (tests/io/independent/).
     --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9) ;;
-    # the plots, and the per-phase roofline's instruction counts (valgrind's callgrind, objdump)
-    --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils) ;;
+    # the plots, the per-phase roofline's instruction counts (valgrind's callgrind, objdump)
+    # and the flagship's serial share (perf: benchmarks/scaling/serial_share.py)
+    --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils linux-perf) ;;
     *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests | --bench]" >&2; exit 2 ;;
 esac
 
