@@ -18,9 +18,9 @@ case "${1:-}" in
     # slowest tests and units; VTK's Python module reads our .vtp files back in the
     # independent-reader test (tests/io/independent/).
     --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9) ;;
-    # the plots, the per-phase roofline's instruction counts (valgrind's callgrind, objdump)
-    # and the flagship's serial share (perf: benchmarks/scaling/serial_share.py)
-    --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils linux-perf) ;;
+    # the plots and the per-phase roofline's instruction counts (valgrind's callgrind, objdump);
+    # perf for the flagship's serial share is optional (below)
+    --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils) ;;
     *) echo "setup.sh: unknown argument '$1'; usage: setup.sh [--tests | --bench]" >&2; exit 2 ;;
 esac
 
@@ -42,8 +42,17 @@ for p in "${packages[@]}"; do
         missing+=("$p")
     fi
 done
+# Optional packages: installed where the package exists; nothing fails without them. perf for
+# the flagship's serial share in scripts/bench.sh (Debian's linux-perf; Ubuntu names it
+# otherwise, and one unknown name would fail the whole install).
+optional=()
+[ "${1:-}" = "--bench" ] && optional+=(linux-perf)
+missing_optional=()
+for p in "${optional[@]}"; do
+    is_installed "$p" || missing_optional+=("$p")
+done
 
-if [ "${#missing[@]}" -eq 0 ]; then
+if [ "${#missing[@]}" -eq 0 ] && [ "${#missing_optional[@]}" -eq 0 ]; then
     echo "setup.sh: nothing to do, all ${#packages[@]} packages are installed"
     exit 0
 fi
@@ -52,21 +61,32 @@ sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then
     if command -v sudo >/dev/null 2>&1; then
         sudo_cmd=(sudo)
-    else
+    elif [ "${#missing[@]}" -gt 0 ]; then
         echo "setup.sh: missing ${missing[*]}, and not root and no sudo: install them by hand" >&2
         exit 1
+    else
+        echo "setup.sh: optional ${missing_optional[*]} not installed: not root and no sudo"
+        exit 0
     fi
 fi
 
-echo "setup.sh: installing ${missing[*]}"
 "${sudo_cmd[@]}" apt-get update
-"${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y --no-install-recommends "${missing[@]}"
-
-for p in "${missing[@]}"; do
-    if ! is_installed "$p"; then
-        echo "setup.sh: $p is still not installed" >&2
-        exit 1
+if [ "${#missing[@]}" -gt 0 ]; then
+    echo "setup.sh: installing ${missing[*]}"
+    "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
+        apt-get install -y --no-install-recommends "${missing[@]}"
+    for p in "${missing[@]}"; do
+        if ! is_installed "$p"; then
+            echo "setup.sh: $p is still not installed" >&2
+            exit 1
+        fi
+    done
+    echo "setup.sh: installed ${missing[*]}"
+fi
+for p in "${missing_optional[@]}"; do
+    if "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$p"; then
+        echo "setup.sh: installed the optional $p"
+    else
+        echo "setup.sh: the optional $p is not installed (no such package here?); going on without it"
     fi
 done
-echo "setup.sh: installed ${missing[*]}"

@@ -226,5 +226,37 @@ check("the child exits with its parent", not alive, f"pid {child} still running"
 if alive:
     os.kill(child, signal.SIGKILL)
 
+# 9. The script's end (exit_now, after draw()): its status 0, and every figure drawn before it.
+# In a process of its own, with its own stand-ins (os._exit would end this one).
+out = scene(3)
+ender = out / "ender.py"
+ender.write_text(f"""
+import os, sys, types
+for name in ("matplotlib", "matplotlib.pyplot", "numpy"):
+    sys.modules.setdefault(name, types.ModuleType(name))
+sys.modules["matplotlib"].use = lambda *a, **k: None
+sys.path.insert(0, {str(SCRIPT.parent)!r})
+from pathlib import Path
+import plot
+def mark(out, what):  # (named functions: the pool's processes find them by name)
+    (out / "drawn").mkdir(exist_ok=True)
+    (out / "drawn" / f"{{what}}.{{os.getpid()}}").write_text("")
+    return [(None, [0]) for _ in plot.PANELS]
+def one_map(out, spacing, i, tc):
+    return mark(out, f"map_{{int(i)}}")
+def many(out, times, panels, label, cmap, lo, name):
+    mark(out, name)
+def series(out):
+    mark(out, "series")
+def hot(out):
+    mark(out, "hot_material")
+plot.plot_map, plot.plot_maps, plot.plot_series, plot.plot_hot_material = one_map, many, series, hot
+plot.draw(Path({str(out)!r}), 0.25)
+plot.exit_now()
+""")
+ended = subprocess.run([sys.executable, str(ender)])
+check("exit_now: status 0", ended.returncode == 0, f"status {ended.returncode}")
+check("exit_now: every figure drawn first", set(drawn(out)) == every_figure(3), f"{sorted(drawn(out))}")
+
 print(f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
