@@ -29,6 +29,18 @@ sys.modules["matplotlib"].pyplot = sys.modules["matplotlib.pyplot"]
 sys.path.insert(0, str(SCRIPT.parent))
 import plot  # noqa: E402
 
+# The start of a script that runs plot.py's parts in a process of its own, with the same empty
+# stand-ins for matplotlib and numpy (cases 8 and 9).
+STANDALONE = f"""
+import os, sys, time, types
+for name in ("matplotlib", "matplotlib.pyplot", "numpy"):
+    sys.modules.setdefault(name, types.ModuleType(name))
+sys.modules["matplotlib"].use = lambda *a, **k: None
+sys.path.insert(0, {str(SCRIPT.parent)!r})
+from pathlib import Path
+import plot
+"""
+
 SLOW = {}  # map index -> seconds the child takes on it (the pool is never slow)
 FAIL_IN_CHILD = set()  # map indices the child fails on
 
@@ -188,14 +200,7 @@ check("no `end`: no series drawn", "series" not in drawn(out), f"{sorted(drawn(o
 # not wait for ever on the pipes, whose parent ends it closed).
 out = scene(3)
 plotter = out / "plotter.py"
-plotter.write_text(f"""
-import os, sys, time, types
-for name in ("matplotlib", "matplotlib.pyplot", "numpy"):
-    sys.modules.setdefault(name, types.ModuleType(name))
-sys.modules["matplotlib"].use = lambda *a, **k: None
-sys.path.insert(0, {str(SCRIPT.parent)!r})
-from pathlib import Path
-import plot
+plotter.write_text(STANDALONE + f"""
 def busy(out, spacing, i, tc):
     (out / "child.pid").write_text(str(os.getpid()))
     time.sleep(3)
@@ -230,14 +235,7 @@ if alive:
 # In a process of its own, with its own stand-ins (os._exit would end this one).
 out = scene(3)
 ender = out / "ender.py"
-ender.write_text(f"""
-import os, sys, types
-for name in ("matplotlib", "matplotlib.pyplot", "numpy"):
-    sys.modules.setdefault(name, types.ModuleType(name))
-sys.modules["matplotlib"].use = lambda *a, **k: None
-sys.path.insert(0, {str(SCRIPT.parent)!r})
-from pathlib import Path
-import plot
+ender.write_text(STANDALONE + f"""
 def mark(out, what):  # (named functions: the pool's processes find them by name)
     (out / "drawn").mkdir(exist_ok=True)
     (out / "drawn" / f"{{what}}.{{os.getpid()}}").write_text("")
