@@ -49,6 +49,8 @@ optional=()
 [ "${1:-}" = "--bench" ] && optional+=(linux-perf)
 missing_optional=()
 for p in "${optional[@]}"; do
+    # A perf from elsewhere (Ubuntu's linux-tools) will do: no apt-get on every run for it.
+    [ "$p" = linux-perf ] && command -v perf >/dev/null 2>&1 && continue
     is_installed "$p" || missing_optional+=("$p")
 done
 

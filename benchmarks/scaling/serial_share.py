@@ -64,18 +64,22 @@ def short(function):
 def samples(data):
     """(pid, tid, time, short function name, in the kernel) of every sample in perf's file."""
     line = re.compile(r"\s*(\d+)/(\d+)\s+([\d.]+):\s*([0-9a-f]+)\s*(.*)")
-    try:
-        script = subprocess.Popen(["perf", "script", "-i", str(data), "-F", "pid,tid,time,ip,sym"],
-                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    except FileNotFoundError:
-        sys.exit("serial_share.py: perf not found (Debian: apt-get install linux-perf)")
-    for text in script.stdout:
-        m = line.match(text)
-        if m:
-            kernel = len(m[4]) == 16 and m[4].startswith("ffff")
-            yield int(m[1]), int(m[2]), float(m[3]), short(m[5].strip()), kernel
-    if script.wait() != 0:
-        sys.exit(f"serial_share.py: perf script failed: {script.stderr.read().strip()}")
+    # perf's messages to a file, read if it fails: a pipe read only at the end could fill and
+    # stall it while this reads its samples.
+    with tempfile.TemporaryFile(mode="w+") as errors:
+        try:
+            script = subprocess.Popen(["perf", "script", "-i", str(data), "-F", "pid,tid,time,ip,sym"],
+                                      stdout=subprocess.PIPE, stderr=errors, text=True)
+        except FileNotFoundError:
+            sys.exit("serial_share.py: perf not found (Debian: apt-get install linux-perf)")
+        for text in script.stdout:
+            m = line.match(text)
+            if m:
+                kernel = len(m[4]) == 16 and m[4].startswith("ffff")
+                yield int(m[1]), int(m[2]), float(m[3]), short(m[5].strip()), kernel
+        if script.wait() != 0:
+            errors.seek(0)
+            sys.exit(f"serial_share.py: perf script failed: {errors.read().strip()}")
 
 
 def main():

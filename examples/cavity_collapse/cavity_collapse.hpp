@@ -270,6 +270,11 @@ struct sample {
 };
 
 // Measures one sample; keeps the cavities' last centres so it can follow them.
+// The particle count from which the example's own passes over the particles (the largest
+// compression, the maps' text) run on the solver's threads: below it a team costs more than the
+// pass, as for the library's observers and loops.
+inline constexpr std::size_t parallel_from = 4096;
+
 class monitor {
 public:
     explicit monitor(const settings& s) : s_(s), bulk_(cavity_collapse::bulk_shock_temperature(s.velocity)) {
@@ -300,17 +305,17 @@ public:
     }
 
     // The largest 1 - det F over the particles, and 0 (NaN never taken), on the solver's
-    // threads from 4096 particles (below, a team costs more than the pass). Each thread folds
-    // std::max over its particles, and OpenMP joins the threads' maxima with the 0 the loop
-    // starts from: a maximum does not depend on how the particles are shared, and 1 - det F is
-    // never -0, so the bits are the serial loop's whatever the thread count. Every step: one
-    // thread over every particle was a serial part of each step (docs/performance.md).
+    // threads from parallel_from particles. Each thread folds std::max over its particles, and
+    // OpenMP joins the threads' maxima with the 0 the loop starts from: a maximum does not
+    // depend on how the particles are shared, and 1 - det F is never -0, so the bits are the
+    // serial loop's whatever the thread count. Every step: one thread over every particle was a
+    // serial part of each step (docs/performance.md).
     template <class Solver>
     static double largest_compression(const Solver& sol) {
         const auto& F = sol.particles().template column<gimlet::fields::deformation_gradient>();
         const auto n = static_cast<std::ptrdiff_t>(F.size());
         double eta = 0;
-        GIMLET_OMP(parallel for reduction(max : eta) num_threads(sol.threads()) if (n >= 4096))
+        GIMLET_OMP(parallel for reduction(max : eta) num_threads(sol.threads()) if (n >= std::ptrdiff_t(parallel_from)))
         for (std::ptrdiff_t i = 0; i < n; ++i) eta = std::max(eta, 1.0 - double(F[std::size_t(i)].determinant()));
         return eta;
     }

@@ -90,7 +90,7 @@ void write_map(const std::filesystem::path& file, const Solver& sol) {
     const auto& ps = sol.particles();
     const std::size_t n = ps.size();
     const int threads = sol.threads();
-    const std::size_t blocks = n >= 4096 && threads > 1 ? std::size_t(threads) : 1;
+    const std::size_t blocks = n >= cavity_collapse::parallel_from && threads > 1 ? std::size_t(threads) : 1;
     const std::size_t size = (n + blocks - 1) / blocks;
     std::vector<std::string> text(blocks);
     // An exception must not leave the parallel region (that ends the program): a block's
