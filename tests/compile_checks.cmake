@@ -249,6 +249,23 @@ foreach(src IN LISTS GIMLET_FAILTEST_SOURCES)
 endforeach()
 
 # ---------------------------------------------------------------------------------------------
+# The shared solvers (tests/instantiations_*.cpp) compiled again for a wider instruction set,
+# x86-64-v4 (AVX-512 and FMA), at the build's optimisation and with its warnings, as objects
+# that nothing links or runs. g++'s flow warnings (-Wmaybe-uninitialized) follow the code it
+# generates, so a header that is clean in the portable build can warn in a user's
+# -march=native one, and stop it under -Werror: self_contact::side did with g++ 12 and AVX-512
+# (docs/testing.md, "A native build"). Only on x86-64, where the compiler takes the flag.
+if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
+    include(CheckCXXCompilerFlag)
+    check_cxx_compiler_flag(-march=x86-64-v4 GIMLET_HAS_MARCH_X86_64_V4)
+    if(GIMLET_HAS_MARCH_X86_64_V4)
+        add_library(gimlet_wide_isa_check OBJECT instantiations_elastic.cpp instantiations_hmx.cpp)
+        target_link_libraries(gimlet_wide_isa_check PRIVATE ${GIMLET_TARGET} gimlet_warnings)
+        target_compile_options(gimlet_wide_isa_check PRIVATE -march=x86-64-v4)
+    endif()
+endif()
+
+# ---------------------------------------------------------------------------------------------
 # Package test: install this build tree into a scratch prefix, then configure, build and run
 # tests/package (a consumer that only knows find_package(gimlet)) against it.
 set(GIMLET_PACKAGE_PREFIX "${CMAKE_BINARY_DIR}/package-install")

@@ -117,7 +117,6 @@ struct self_contact {
         const auto& ps = view.particles;
         const std::size_t nodes = view.grid.size(), n = ps.size(), entries = view.bodies * nodes;
         split_nodes_ = 0;
-        dim_ = dim;
         if (!enabled) {
             split_.assign(entries, 0);
             split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
@@ -272,15 +271,18 @@ struct self_contact {
         const std::size_t e = std::size_t(p.template get<fields::body>()) * nodes_ + node;
         if (e >= split_.size() || !split_[e]) return 0;
         const auto& x = p.template get<fields::position>();
+        // The dimension as compiled, not a member set at run time: the loop cannot read past
+        // node_position (g++ 12 with AVX-512 warned that it might, and -Werror stopped the build).
+        constexpr int dims = int(std::remove_cvref_t<decltype(x)>::RowsAtCompileTime);
         double along = 0;
-        for (int d = 0; d < dim_; ++d) {
+        for (int d = 0; d < dims; ++d) {
             double off = double(x[d] - node_position[d]);
             const double len = grid_length_[std::size_t(d)];
             if (len > 0) {
                 if (off > len / 2) off -= len;
                 else if (off < -len / 2) off += len;
             }
-            along += off * unit_[e * std::size_t(dim_) + std::size_t(d)];
+            along += off * unit_[e * std::size_t(dims) + std::size_t(d)];
         }
         return along < 0.5 * (front_along_[e] + front_against_[e]) ? 0 : 1;
     }
@@ -311,7 +313,6 @@ private:
     }
 
     std::size_t nodes_ = 0, split_nodes_ = 0;
-    int dim_ = 0;
     std::vector<double> current_, best_, front_along_, front_against_, unit_, grid_length_;
     std::vector<std::size_t> best_particle_;
     std::vector<std::uint8_t> split_, candidate_rows_, split_rows_, unit_set_;
