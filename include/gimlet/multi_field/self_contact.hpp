@@ -271,9 +271,10 @@ struct self_contact {
         const std::size_t e = std::size_t(p.template get<fields::body>()) * nodes_ + node;
         if (e >= split_.size() || !split_[e]) return 0;
         const auto& x = p.template get<fields::position>();
-        // The dimension as compiled, not a member set at run time: the loop cannot read past
-        // node_position (g++ 12 with AVX-512 warned that it might, and -Werror stopped the build).
-        constexpr int dims = int(std::remove_cvref_t<decltype(x)>::RowsAtCompileTime);
+        // The particle's space's dimension (what prepare used), not a member set at run time: the
+        // loop cannot read past node_position (g++ 12 with AVX-512 warned that it might, and
+        // -Werror stopped the build).
+        constexpr int dims = P::space_type::dim;
         double along = 0;
         for (int d = 0; d < dims; ++d) {
             double off = double(x[d] - node_position[d]);
