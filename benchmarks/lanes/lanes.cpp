@@ -12,6 +12,8 @@
 //               3 x 3 tensors: what a plane-strain path of the policies would do);
 //   two lanes   the same, two particles in the lanes of one vector (GCC's and clang's vector
 //               extension: SSE2 in a portable build).
+//   four, eight lanes  the same, in a build with AVX (four) or AVX-512 (eight): what a native
+//               build's wide vectors give this arithmetic (rows only in such a build).
 // Every operation keeps the library's operands and order, so all four agree bit for bit; the
 // program checks it and exits 1 if not (it mirrors update.hpp, linear_elastic, jaumann_rotate's
 // plane-strain form and eos::linear: a change there shows here). A build where the compiler may
@@ -56,6 +58,30 @@ struct lanes<2> {
     static double get(const v& x, int l) { return x[l]; }
     static void set(v& x, int l, double a) { x[l] = a; }
 };
+// Four and eight lanes where the build has the instructions (AVX: a 32-byte vector; AVX-512:
+// 64 bytes): what a native build's wide vectors would give the same arithmetic. Not in a
+// portable build, where the compiler would split them into SSE2 halves.
+#if defined(__AVX__)
+template <>
+struct lanes<4> {
+    typedef double v __attribute__((vector_size(32)));
+    static double get(const v& x, int l) { return x[l]; }
+    static void set(v& x, int l, double a) { x[l] = a; }
+};
+#endif
+#if defined(__AVX512F__)
+template <>
+struct lanes<8> {
+    typedef double v __attribute__((vector_size(64)));
+    static double get(const v& x, int l) { return x[l]; }
+    static void set(v& x, int l, double a) { x[l] = a; }
+};
+constexpr std::size_t widest = 8;
+#elif defined(__AVX__)
+constexpr std::size_t widest = 4;
+#else
+constexpr std::size_t widest = 2;
+#endif
 
 // The state the update reads and writes, per particle.
 struct state {
@@ -194,7 +220,7 @@ int main(int argc, char** argv) try {
     solver sol(bench::two_blocks(bench::reference_material(), cell, 4e-3), opt);
     for (int k = 0; k < 50; ++k) sol.step(dt);
     auto& ps = sol.particles();
-    const std::size_t n = ps.size() & ~std::size_t(1);
+    const std::size_t n = ps.size() / widest * widest;  // whole groups of the widest lanes
     const auto material = sol.materials()[0];
     // Velocity gradients of the size a shock gives (dt |L| up to 1.4e-3), from a fixed seed;
     // five library updates with others first, so that every particle starts stressed, strained
@@ -241,8 +267,8 @@ int main(int argc, char** argv) try {
         f();
         return bench::seconds_since(t0);
     };
-    std::vector<double> t_library, t_pairs, t_one, t_two;
-    state pairs = start, one = start, two = start;
+    std::vector<double> t_library, t_pairs, t_one, t_two, t_four, t_eight;
+    state pairs = start, one = start, two = start, four = start, eight = start;
     for (int r = 0; r < repeats; ++r) {  // interleaved, each from the start state
         restore();
         t_pairs.push_back(seconds(library_pairs));
@@ -253,6 +279,14 @@ int main(int argc, char** argv) try {
         t_one.push_back(seconds([&] { update<1>(one, L, mass, volume0, dt, G, K, n); }));
         two = start;
         t_two.push_back(seconds([&] { update<2>(two, L, mass, volume0, dt, G, K, n); }));
+#if defined(__AVX__)
+        four = start;
+        t_four.push_back(seconds([&] { update<4>(four, L, mass, volume0, dt, G, K, n); }));
+#endif
+#if defined(__AVX512F__)
+        eight = start;
+        t_eight.push_back(seconds([&] { update<8>(eight, L, mass, volume0, dt, G, K, n); }));
+#endif
     }
     const state lib = snapshot();
     const std::size_t d_pairs = GIMLET_HAS_LANES ? differing(lib, pairs, n) : 0;
@@ -267,10 +301,23 @@ int main(int argc, char** argv) try {
                     bench::median(t_pairs) * ns, bench::median(t_pairs) / base, d_pairs);
     std::printf("| written out, one lane | %.2f | %.3f | %zu |\n", bench::median(t_one) * ns, bench::median(t_one) / base, d_one);
     std::printf("| written out, two lanes | %.2f | %.3f | %zu |\n", bench::median(t_two) * ns, bench::median(t_two) / base, d_two);
+    // The wide rows, where the build has them; their bits are checked against the one lane's.
+    std::size_t d_wide = 0;
+#if defined(__AVX__)
+    auto wide_row = [&](const char* name, const std::vector<double>& t, const state& st) {
+        const std::size_t d = differing(lib, st, n);
+        d_wide += differing(one, st, n);
+        std::printf("| written out, %s | %.2f | %.3f | %zu |\n", name, bench::median(t) * ns, bench::median(t) / base, d);
+    };
+    wide_row("four lanes (AVX)", t_four, four);
+#endif
+#if defined(__AVX512F__)
+    wide_row("eight lanes (AVX-512)", t_eight, eight);
+#endif
 #if defined(__FMA__) || defined(__FP_FAST_FMA) || defined(__aarch64__)
     // Products and sums may be fused: the written-out forms bit for bit with each other, the
     // library near them.
-    const std::size_t d_lanes = differing(one, two, n);
+    const std::size_t d_lanes = differing(one, two, n) + d_wide;
     const double modulus = K + 4.0 / 3.0 * G;
     const double near = std::max(largest_strain_difference(lib, one, n, modulus, material.density),
                                  largest_strain_difference(lib, two, n, modulus, material.density));
@@ -280,7 +327,7 @@ int main(int argc, char** argv) try {
                 d_lanes, near);
     return d_lanes == 0 && near <= 1e-12 ? 0 : 1;
 #else
-    return d_one + d_two + d_pairs == 0 ? 0 : 1;
+    return d_one + d_two + d_pairs + d_wide == 0 ? 0 : 1;
 #endif
 } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_lanes: %s\n", e.what());
