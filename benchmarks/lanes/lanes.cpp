@@ -43,39 +43,37 @@ namespace {
 using S2 = bench::S2;
 using mat2 = S2::matrix;
 
-// A lane type and its element access: one double, or two in one SSE2 vector.
+// A lane type and its element access: one double, or W in one vector of GCC's and clang's
+// extension (two: SSE2; four: AVX; eight: AVX-512). The wider ones are used only where the build
+// has them: in a portable build the compiler would split them into SSE2 halves.
 template <int W>
-struct lanes;
+struct vector_of;  // W doubles in one vector (g++ takes no vector_size that depends on W)
+template <>
+struct vector_of<2> {
+    typedef double type __attribute__((vector_size(16)));
+};
+template <>
+struct vector_of<4> {
+    typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct vector_of<8> {
+    typedef double type __attribute__((vector_size(64)));
+};
+template <int W>
+struct lanes {
+    using v = typename vector_of<W>::type;
+    static double get(const v& x, int l) { return x[l]; }
+    static void set(v& x, int l, double a) { x[l] = a; }
+};
 template <>
 struct lanes<1> {
     using v = double;
     static double get(const v& x, int) { return x; }
     static void set(v& x, int, double a) { x = a; }
 };
-template <>
-struct lanes<2> {
-    typedef double v __attribute__((vector_size(16)));
-    static double get(const v& x, int l) { return x[l]; }
-    static void set(v& x, int l, double a) { x[l] = a; }
-};
-// Four and eight lanes where the build has the instructions (AVX: a 32-byte vector; AVX-512:
-// 64 bytes): what a native build's wide vectors would give the same arithmetic. Not in a
-// portable build, where the compiler would split them into SSE2 halves.
-#if defined(__AVX__)
-template <>
-struct lanes<4> {
-    typedef double v __attribute__((vector_size(32)));
-    static double get(const v& x, int l) { return x[l]; }
-    static void set(v& x, int l, double a) { x[l] = a; }
-};
-#endif
+// The widest lanes the build has: the particles are taken in whole groups of them.
 #if defined(__AVX512F__)
-template <>
-struct lanes<8> {
-    typedef double v __attribute__((vector_size(64)));
-    static double get(const v& x, int l) { return x[l]; }
-    static void set(v& x, int l, double a) { x[l] = a; }
-};
 constexpr std::size_t widest = 8;
 #elif defined(__AVX__)
 constexpr std::size_t widest = 4;
