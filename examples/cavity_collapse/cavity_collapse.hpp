@@ -269,12 +269,12 @@ struct sample {
     }
 };
 
-// Measures one sample; keeps the cavities' last centres so it can follow them.
 // The particle count from which the example's own passes over the particles (the largest
 // compression, the maps' text) run on the solver's threads: below it a team costs more than the
 // pass, as for the library's observers and loops.
 inline constexpr std::size_t parallel_from = 4096;
 
+// Measures one sample; keeps the cavities' last centres so it can follow them.
 class monitor {
 public:
     explicit monitor(const settings& s) : s_(s), bulk_(cavity_collapse::bulk_shock_temperature(s.velocity)) {
