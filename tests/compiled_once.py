@@ -14,10 +14,10 @@ ways:
   back into its class fails here by name, whatever the compiler then emits);
 - in the objects (nm): no family's object defines a member of a shared core that is defined
   outside the class (the headers' list: the passes, the destructor, the member templates), the
-  slab loops only those reach, a shared core's constructor from a scene, or a shared solver's
-  `advance`.
-The step's order (`advance<Law>` and the schemes' steps in the core: templates on the law, which
-a unit compiles for the laws of its own solvers) and the small inline members are not checked.
+  slab loops and the stages (include/gimlet/solver/stages/) only those reach, a shared core's
+  constructor from a scene, or a shared solver's `advance`.
+The schemes (gimlet::solver's members, reached only from `advance`) and the small inline members
+are not checked.
 
 usage: compiled_once.py NM SOLVER_HEADER_DIR INSTANTIATION_OBJECTS... -- FAMILY_OBJECTS...
 """
@@ -32,11 +32,19 @@ SOLVER = "gimlet::solver<"
 # What must stay defined outside its class (docs/performance.md, "Solvers that differ only in
 # their contact law share the rest"): the core's members that the step, the constructor and the
 # time step reach, and the solver's own step.
-REQUIRED_CORE = ["solver_core", "~solver_core", "begin_step", "scatter_all", "scatter_for_usf", "scatter",
-                 "find_shared_nodes", "stable_time_step", "check_particles", "grid_to_particles",
-                 "update_material_points", "finish_step", "consistent_mass_forces", "filter_volumes"]
+REQUIRED_CORE = ["solver_core", "~solver_core", "scatter_all", "scatter_for_usf", "scatter", "map_forces",
+                 "find_shared_nodes", "stable_time_step", "check_particles", "check_light_possible",
+                 "update_grid_momentum",
+                 "grid_to_particles", "update_material_points", "finish_step", "check_step_start",
+                 "compute_stencils", "group_into_slabs", "start_grid", "find_light_particles",
+                 "start_of_step_velocities", "clear_forces", "remapped_velocities", "average_volumetric_rates",
+                 "average_mean_stress", "filter_volumes", "sort_by_cell"]
 REQUIRED_SOLVER = ["advance"]
 SLAB_LOOPS = {"for_each_particle_by_slab", "for_each_particle_by_slab_reaching"}
+# The stages' members take the core as a template argument (include/gimlet/solver/stages/): those
+# the passes reach are instantiated with them, so none may be defined in a family's object for a
+# shared core either.
+STAGES = "gimlet::stages::"
 
 
 def defined_names(nm, obj):
@@ -108,6 +116,9 @@ def main(argv):
                     members[core[1]] += 1
                 elif core[1] == "solver_core" and "gimlet::scene::scene<" in name:
                     members["solver_core (from a scene)"] += 1
+            if STAGES in name and any(c in name for c in shared_cores):
+                stage = re.split(r"[<(]", name[name.index(STAGES) + len(STAGES):], maxsplit=1)[0]
+                members[f"stages::{stage}"] += 1
             solver = member_of(name, SOLVER)
             if solver and solver[0] in shared_solvers and solver[1] in REQUIRED_SOLVER:
                 members[f"solver::{solver[1]}"] += 1

@@ -55,18 +55,20 @@ import subprocess
 import sys
 import tempfile
 
-# solver::timings()' phases, in its order, with the names of the solver members (and the
-# policies' hooks) that run in each (include/gimlet/solver/solver.hpp, begin_step and musl_step;
-# the contact policy's part of the step is gimlet::solver's law_passes).
+# solver::timings()' phases, in its order, with the names of the solver's stages (and the
+# policies' hooks) that run in each (include/gimlet/solver/solver.hpp, the schemes, which time
+# each stage into its phase; the stages' own state under include/gimlet/solver/stages/).
 PHASES = [
-    ("P2G", r"compute_stencils?\b|::scatter(_all|_for_usf)?\b|begin_step|slab_schedule::bucket\b|\bbucket\(|"
-            r"::prepare\(|choose_fields|"
-            r"clear_grid|find_light_particles|find_shared_nodes|average_mean_stress|self_contact::initialize"),
-    ("grid", r"update_grid_momentum|consistent_mass"),
-    ("contact", r"law_passes::resolve\b|exchange::resolve\b|multi_field::correct\b"),
-    ("G2P", r"grid_to_particles|nodal_velocity|apply_walls"),
-    ("material", r"finish_step|material_pass|update_material_point|update_material_pair|velocity_gradient|"
-                 r"filter_volumes|average_volumetric_rates|law_passes::hook\b|check_pending|count_health"),
+    ("P2G", r"compute_stencils?\b|::scatter(_all|_for_usf|_and_search)?\b|begin_step|slab_schedule::bucket\b|"
+            r"\bbucket\(|::prepare\(|group_into_slabs|field_choice::|start_grid|map_forces|"
+            r"clear_grid|find_light_particles|light_particles::find\b|find_shared_nodes|average_mean_stress|"
+            r"volumetric_average::average_stress\b|self_contact::initialize"),
+    ("grid", r"update_grid_momentum|consistent_mass|start_of_step_velocities"),
+    ("contact", r"resolve_contact\b|exchange::resolve\b|multi_field::correct\b|clear_forces"),
+    ("G2P", r"grid_to_particles|light_particles::move\b|remapped_velocities|nodal_velocity|apply_walls"),
+    ("material", r"finish_step|material_pass|update_material_point|update_material_pair|update_stress|"
+                 r"velocity_gradient|filter_volumes|volume_filter::apply\b|average_volumetric_rates|"
+                 r"volumetric_average::average_rates\b|contact_hook\b|check_step_start|check_pending|count_health"),
 ]
 SCENE_NAMES = {"reference": "reference (elastic)", "hmx": "HMX, the flagship's defaults"}
 
@@ -584,11 +586,14 @@ calls=1 0x50 0
         (phase_of("void gimlet::detail::slab_schedule<2>::for_each_kept<gimlet::multi_field::self_contact::"
                   "initialize<V>(V&)::{lambda(unsigned long)#1}>(unsigned char const*, bool, int, V&&) const"), "P2G"),
         (phase_of("void gimlet::multi_field::exchange::resolve<G>(G&)"), "contact"),
-        (phase_of("gimlet::solver<a, b>::law_passes::resolve(gimlet::multi_field::pass)"), "contact"),
-        (phase_of("gimlet::solver<a, b>::law_passes::hook() [clone ._omp_fn.0]"), "material"),
+        (phase_of("gimlet::solver<a, b>::resolve_contact(gimlet::multi_field::pass)"), "contact"),
+        (phase_of("gimlet::solver<a, b>::contact_hook() [clone ._omp_fn.0]"), "material"),
+        (phase_of("void gimlet::stages::light_particles<a>::move<b>(b&, double)"), "G2P"),
+        (phase_of("void gimlet::stages::consistent_mass<a, 9ul>::apply<b>(b&) [clone ._omp_fn.0]"), "grid"),
+        (phase_of("void gimlet::stages::volume_filter<a>::apply<b>(b&)"), "material"),
         (phase_of("gimlet::solver_core<a, b>::scatter_all()"), "P2G"),
         (phase_of("gimlet::solver_core<a, b>::scatter_for_usf()"), "P2G"),
-        (phase_of("gimlet::solver_core<a, b>::begin_step(double, gimlet::solver_core<a, b>::phase_clock&)"), "P2G"),
+        (phase_of("gimlet::solver<a, b>::begin_step(double)"), "P2G"),
     ]
     bad += [(got, want) for got, want in checks if got != want]
     for b in bad:

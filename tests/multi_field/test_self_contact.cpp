@@ -497,7 +497,7 @@ concept names_rows = requires(const P& p) { p.split_rows(); };
 }  // namespace
 
 // Where the partition says it splits nothing in this step and the later field slots are empty,
-// the grid's node passes skip them (solver.hpp, swept_fields_). The slot in one body closes, its
+// the grid's node passes skip them (stages::field_choice::swept). The slot in one body closes, its
 // faces land in separate fields and part again, so the second fields open, hold mass and empty
 // again; a second body (a block) lands on a wall meanwhile. Every particle and every
 // grid entry ends as it does when every slot is swept every step, under MUSL and USF, on 3

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The solver's particle passes: the material update (docs/physics.md section 1, step 5),
-/// volumetric averaging, the step's last pass that updates and checks every particle, and the
+/// The solver's particle passes: the material update (docs/physics.md section 1, step 5), the
+/// stress the forces take, the step's last pass that updates and checks every particle, and the
 /// sort by cell.
 
-#include "gimlet/solver/solver.hpp"
+#include "gimlet/solver/core.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -17,8 +17,8 @@ namespace gimlet {
 // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
 // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(real dt, const std::vector<vector>& vg) {
-    material_pass(dt, vg, true, [](std::size_t) { return true; });
+void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(real dt) {
+    material_pass(dt, grid_.velocity, true, [](std::size_t) { return true; });
 }
 
 // Every particle's material update from the grid velocities vg (if update_materials), two at a
@@ -66,16 +66,13 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 auto solver_core<S, Sh, M, Fields, MultiField, Part>::velocity_gradient(
     std::size_t i, const std::vector<vector>& vg) const -> matrix {
     matrix L = matrix::Zero();
-    if (is_light(i)) {
-        L = light_velocity_gradient(i, vg);
+    if (lights_.is_light(i)) {
+        L = lights_.velocity_gradient(*this, i, vg);
     } else {
         auto at = entries(i);
         stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[at(node)] * g.transpose(); });
     }
-    if (options_.volumetric_average) {
-        const std::size_t c = cell_key(i);
-        L.diagonal().array() += (cell_rate_[c] / cell_volume_[c] - L.trace()) / real(dim);
-    }
+    if (options_.volumetric_average) volumetric_average_.averaged_rate(*this, i, L);
     return L;
 }
 
@@ -112,71 +109,14 @@ bool solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_pair(
     return (void)i, (void)dt, (void)vg, false;
 }
 
-// ---- volumetric averaging (solver_options::volumetric_average) ------------------------
-
-// The particle's body (or with a partition, its field at that node) and grid cell, as one
-// index: the first node of its stencil (a cell for a given shape) in its block of nodes. Two
-// bodies, or two fields of one body, are never averaged together.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::cell_key(std::size_t i) const -> std::size_t {
-    std::size_t flat = 0;
-    for (int d = 0; d < dim; ++d) flat += std::size_t(stencils_[i].offset[d][0]);
-    std::size_t block = particles_.template column<fields::body>()[i];
-    if constexpr (fields_per_body > 1) block = block * fields_per_body + sides_[i][0];
-    return block * grid_.size() + flat;
-}
-
 // V_p sigma_p as the nodal forces take it: with volumetric averaging, the particle's in-plane
-// mean stress tr(sigma_p)/dim replaced by its cell's volume-weighted mean (B-bar: the power
-// these forces do on the grid velocities is then exactly the stress power of the averaged
-// rates, sum_p V_p sigma_p : L-bar_p, so averaging creates no energy).
+// mean stress replaced by its cell's volume-weighted mean (stages::volumetric_average).
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i) const -> matrix {
     const matrix& sig = particles_.template column<fields::stress>()[i];
     const real v = current_volume(particles_[i]);
     if (!options_.volumetric_average) return v * sig;
-    const std::size_t c = cell_key(i);
-    matrix out = sig;
-    out.diagonal().array() += cell_stress_[c] / cell_stress_volume_[c] - sig.trace() / real(dim);
-    return v * out;
-}
-
-// Per body (or field) and cell (cell_key), the sums of V_p tr(sigma_p)/dim and of V_p (force_stress).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::average_mean_stress() {
-    const std::size_t n = materials_.size() * fields_per_body * grid_.size();
-    cell_stress_.assign(n, real(0));
-    cell_stress_volume_.assign(n, real(0));
-    const auto& sig = particles_.template column<fields::stress>();
-    for_each_particle_by_slab([&](std::size_t i) {
-        const real v = current_volume(particles_[i]);
-        const std::size_t c = cell_key(i);
-        cell_stress_[c] += v * sig[i].trace() / real(dim);
-        cell_stress_volume_[c] += v;
-    });
-}
-
-// Per body (or field) and cell (cell_key), the sums of V_p tr L_p and of V_p over its particles, with L_p from the
-// velocities vg. A particle's cell lies in its own slab, so the slab colouring keeps the sums
-// free of races and in a fixed order.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::average_volumetric_rates(const std::vector<vector>& vg) {
-    const std::size_t n = materials_.size() * fields_per_body * grid_.size();
-    cell_rate_.assign(n, real(0));
-    cell_volume_.assign(n, real(0));
-    for_each_particle_by_slab([&](std::size_t i) {
-        real rate = 0;
-        if (is_light(i)) {
-            rate = light_velocity_gradient(i, vg).trace();
-        } else {
-            auto at = entries(i);
-            stencils_[i].for_each([&](std::size_t node, real, const vector& g) { rate += vg[at(node)].dot(g); });
-        }
-        const real v = current_volume(particles_[i]);
-        const std::size_t c = cell_key(i);
-        cell_rate_[c] += v * rate;
-        cell_volume_[c] += v;
-    });
+    return v * volumetric_average_.averaged_stress(*this, i, sig);
 }
 
 // The step's last particle pass: the constitutive update from the grid velocities (MUSL,

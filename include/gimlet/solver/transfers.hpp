@@ -5,7 +5,7 @@
 /// momentum update, and G2P with the light nodes' forces and the damping transfer
 /// (docs/physics.md section 1, steps 1-4; docs/equations.md).
 
-#include "gimlet/solver/solver.hpp"
+#include "gimlet/solver/core.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -82,7 +82,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::nodal_velocity(std::vector
 }
 
 // The nodal arrays of the swept field slots are cleared every step (the others are empty
-// already: swept_fields_); on a large grid that is memory-bound work a single thread would do
+// already: swept_fields()); on a large grid that is memory-bound work a single thread would do
 // while the others wait, so it is split between the threads.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::clear_grid() {
@@ -97,12 +97,12 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::fill_entries(std::vector<v
     for_each_swept_entry([&](std::size_t e) { out[e] = value; });
 }
 
-// All the entries, or where a body's later field slots are not swept (swept_fields_),
+// All the entries, or where a body's later field slots are not swept (swept_fields()),
 // its first slot's: runs of up to `run` entries, handed to the threads in a fixed split.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <class F>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f) {
-    const std::size_t nodes = grid_.size(), swept = swept_fields_;
+    const std::size_t nodes = grid_.size(), swept = fields_.swept();
     if (swept == fields_per_body) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);
@@ -127,13 +127,13 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f
 }
 
 // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), the forces of the consistent
-// mass if asked (consistent_mass.hpp), (mv)_i += dt f_i,
+// mass if asked (stages/consistent_mass.hpp), (mv)_i += dt f_i,
 // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
 // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
 // particles that exerted it (grid_to_particles).
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
-    consistent_mass_forces();  // solver_options::consistent_mass_iterations; nothing at 0
+    consistent_mass_.apply(*this);  // solver_options::consistent_mass_iterations; nothing at 0
     for_each_swept_entry([&](std::size_t i) {
         const real mi = grid_.mass[i];
         if (with_old_velocity) grid_.velocity_old[i] = mi > 0 ? vector(grid_.momentum[i] / mi) : vector::Zero();
@@ -205,10 +205,10 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_node_change(std::siz
 // momenta only.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles(real dt, bool remap) {
-    // Particles far lighter than their neighbours first (light_particles.hpp): they take their
+    // Particles far lighter than their neighbours first (stages/light_particles.hpp): they take their
     // velocities here, and the others take back the momentum they changed below.
     // The pass is compiled twice: a scene without light particles runs the plain one.
-    if (light_list_.empty()) grid_to_particles_pass<false>(dt, remap);
+    if (lights_.count() == 0) grid_to_particles_pass<false>(dt, remap);
     else grid_to_particles_pass<true>(dt, remap);
 }
 
@@ -221,7 +221,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
     const auto& m = particles_.template column<fields::mass>();
     const real alpha = real(options_.pic_fraction);
     const bool damping = alpha > 0;
-    if constexpr (Lights) move_light_particles(dt);
+    if constexpr (Lights) lights_.move(*this, dt);
     // MUSL's re-map of particle i's new momentum.
     auto scatter_momentum = [&](std::size_t i) {
         const vector mv = m[i] * v[i];
@@ -230,7 +230,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
     };
     auto update = [&](std::size_t i) {
         const auto& st = stencils_[i];
-        if (Lights && light_particle_[i] == lightness::light) {
+        if (Lights && lights_.moved(i)) {
             if (remap) scatter_momentum(i);
             return;
         }
@@ -270,15 +270,15 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
             v[i] = v_flip - alpha * d;
             energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
         }
-        if (Lights && light_particle_[i] == lightness::none) {
+        if (Lights && lights_.returns_momentum(i)) {
             // Its share of the momentum the light particles changed at its nodes:
             // dv_q = -sum_i S_iq P_i / m_i^N (docs/equations.md, "Light particles").
             vector back = vector::Zero();
             auto at_back = entries(i);
             st.for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = at_back(node);
-                const real heavy = heavy_mass(e);
-                if (heavy > 0) back += w / heavy * light_momentum_[e];
+                const real heavy = lights_.heavy_mass(e);
+                if (heavy > 0) back += w / heavy * lights_.momentum(e);
             });
             v[i] -= back;
         }

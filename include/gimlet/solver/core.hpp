@@ -1,0 +1,644 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// gimlet::solver_core: the particles, the grid and the named stages of a step, which the
+/// schemes of gimlet::solver (solver/solver.hpp) call in their order.
+
+#include "gimlet/contact/check.hpp"
+#include "gimlet/contact/concepts.hpp"
+#include "gimlet/contact/node.hpp"
+#include "gimlet/contact/single_field.hpp"
+#include "gimlet/core/detail/omp.hpp"
+#include "gimlet/core/detail/shares.hpp"
+#include "gimlet/core/detail/stencil.hpp"
+#include "gimlet/core/error.hpp"
+#include "gimlet/core/fields.hpp"
+#include "gimlet/core/grid.hpp"
+#include "gimlet/material/material.hpp"
+#include "gimlet/core/material_point.hpp"
+#include "gimlet/material/update.hpp"
+#include "gimlet/core/particle_store.hpp"
+#include "gimlet/multi_field/check.hpp"
+#include "gimlet/multi_field/exchange.hpp"
+#include "gimlet/multi_field/partition.hpp"
+#include "gimlet/scene/scene.hpp"
+#include "gimlet/shape/concepts.hpp"
+#include "gimlet/solver/health.hpp"
+#include "gimlet/solver/options.hpp"
+#include "gimlet/solver/seeding.hpp"
+#include "gimlet/solver/setup_checks.hpp"
+#include "gimlet/solver/slabs.hpp"
+#include "gimlet/solver/stages/consistent_mass.hpp"
+#include "gimlet/solver/stages/field_choice.hpp"
+#include "gimlet/solver/stages/light_particles.hpp"
+#include "gimlet/solver/stages/volume_filter.hpp"
+#include "gimlet/solver/stages/volumetric_average.hpp"
+#include "gimlet/solver/time_step.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <chrono>
+#include <concepts>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace gimlet {
+
+/// The fields a solver's particles store: the union of the core's, the shape's, the material's,
+/// the contact policy's, the partition's and the user's (gimlet::solver's parameters).
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
+using solver_fields_t = field_union_t<core_fields<S>, typename Sh::required_fields, typename M::required_fields,
+                                     typename C::required_fields, typename Part::required_fields, ExtraFields>;
+
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+class solver;
+
+/// Everything of gimlet::solver but its contact policy: the particles, the grid, the passes
+/// of a step and the public members that read them. Solvers that differ only in their contact
+/// law (with the same fields) share it, so a program compiles this part once for all its laws:
+/// its members are the bulk of a solver type's code (docs/performance.md, "Memory, the largest
+/// scene, compile time"). Use gimlet::solver; name this type only to compile it once
+/// (`extern template class`).
+///
+/// \tparam Fields the particles' fields (solver_fields_t).
+/// \tparam MultiField whether the contact policy keeps a velocity field per body
+///         (contact::Contact's `multi_field`).
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+class solver_core {
+public:
+    using space_type = S;
+    using real = typename S::real;
+    using vector = typename S::vector;
+    using matrix = typename S::matrix;
+    using tensor3 = typename S::tensor3;
+    using shape_type = Sh;
+    using material_type = M;
+    using partition_type = Part;
+    using particle_fields = Fields;
+    using store_type = particle_store<S, particle_fields>;
+    static constexpr int dim = S::dim;
+
+    static constexpr bool multi_field = MultiField;
+    // A policy's optional members in a form the solver would skip stop the build with the
+    // checker's sentence instead.
+    static_assert(multi_field::check<Part>());
+    static constexpr std::size_t fields_per_body = Part::fields_per_body;
+    // Fields of one body that no contact keeps apart would pass through each other.
+    static_assert(multi_field || fields_per_body == 1,
+                  "gimlet::solver: a partition with several fields per body needs a multi-field contact policy");
+    static_assert(fields_per_body <= 255, "gimlet::solver: a partition may have at most 255 fields per body");
+
+private:
+    // Only gimlet::solver builds, copies, destroys and reaches into a core: what was private in
+    // the solver stays private, and a core is never a solver without its contact policy.
+    template <Space, shape::Shape, Material, contact::Contact, FieldList, multi_field::Partition>
+    friend class solver;
+
+    using particle_ref = gimlet::particle_ref<store_type>;
+
+    /// Build the particles of a scene (gimlet::solver's constructor). `friction` is the contact
+    /// law's Coulomb coefficient, checked where the options are (none for a policy that is not
+    /// a contact::Law).
+    solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
+                std::optional<double> friction);
+    solver_core(const solver_core&) = default;
+    solver_core(solver_core&&) = default;
+    solver_core& operator=(const solver_core&) = default;
+    solver_core& operator=(solver_core&&) = default;
+    ~solver_core();  // below the class, as the members the step reaches (extern template)
+
+public:
+    /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
+    /// (docs/physics.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
+    /// artificial viscosity acts (viscosity::Viscosity).
+    [[nodiscard]] real stable_time_step() const;
+
+    /// Longitudinal wave speed of particle p: sqrt((K + 4G/3) / rho).
+    template <class P>
+    [[nodiscard]] real wave_speed(const P& p) const {
+        return longitudinal_wave_speed(p, materials_[p.template get<fields::body>()]);
+    }
+
+    /// Mutable access to the particles; the next step re-checks them before using them.
+    [[nodiscard]] store_type& particles() noexcept {
+        state_touched_ = true;
+        pending_health_.valid = false;  // a time step computed before the change no longer applies
+        return particles_;
+    }
+    [[nodiscard]] const store_type& particles() const noexcept { return particles_; }
+    [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
+    [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
+    [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
+    /// The threads the solver's parallel loops use: options().threads where it is positive,
+    /// otherwise OpenMP's default (1 without OpenMP). An observer with a parallel pass of its
+    /// own takes as many, as the library's diagnostics do.
+    [[nodiscard]] int threads() const noexcept {
+        return options_.threads > 0 ? options_.threads : detail::default_threads();
+    }
+    /// The partition of bodies into velocity fields (multi_field::Partition).
+    [[nodiscard]] const Part& partition() const noexcept { return partition_; }
+    [[nodiscard]] real time() const noexcept { return time_; }
+
+    /// Set the clock of a run resumed from saved particles (io/checkpoint.hpp): the simulated
+    /// time (s) and the number of steps already taken. The next step re-checks the particles.
+    void resume_at(real t, std::uint64_t steps_taken) {
+        require(std::isfinite(double(t)) && t >= 0, "resume time (s)", double(t), "finite and >= 0");
+        time_ = t;
+        steps_ = steps_taken;
+        state_touched_ = true;
+        pending_health_.valid = false;
+    }
+    [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
+    /// How many particles the last step found light (solver_options::light_particle_ratio),
+    /// those left to FLIP because no node of theirs had other mass included.
+    [[nodiscard]] std::size_t light_particles() const noexcept { return lights_.count(); }
+    /// Wall-clock time per phase of the steps so far (see docs/performance.md).
+    [[nodiscard]] const step_timings& timings() const noexcept { return timings_; }
+    /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
+    [[nodiscard]] const health_events& health() const noexcept { return health_; }
+
+private:
+    using stencil_type = detail::stencil<S, Sh::stencil>;
+    // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
+    // thread a fixed share, the same in every loop over the same items, and a thread done early
+    // takes chunks of the shares not yet done; each slab pass likewise gives each thread the
+    // same slabs of a colour. (The same thread number is the same thread in every parallel
+    // region with GCC's and LLVM's runtimes; the OpenMP standard does not promise it.) So a
+    // particle's data and a slab's nodes stay near one core, in its caches, from pass to pass
+    // (binding the threads, OMP_PROC_BIND and OMP_PLACES, keeps each thread on its core):
+    // shares handed out on demand moved about half of them between the cores in every pass,
+    // and on a 2-core host where that cost as much as the work, 2 threads ran the elastic step
+    // no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
+    // machine) or a share of costlier particles holds up the loop by no more than the chunk its
+    // thread has claimed, where fixed shares alone waited for the whole share: on 16 cores
+    // those ran at 0.59-1.06 of the rate of shares handed out on demand (docs/performance.md,
+    // "Each thread its own particles" and "Shares that are taken over").
+    // Every particle's result, and every node's sum (slab by slab, in particle order), is
+    // independent of which thread runs it, so the schedule costs no determinism.
+    //
+    // Loops shorter than this run on one thread: below it, starting a team costs more than the
+    // loop (and a team on a busy machine can stall the whole step).
+    static constexpr std::ptrdiff_t parallel_threshold = 4096;
+    // A threshold likewise for loops over grid nodes, whose bodies cost a few nanoseconds each: a
+    // pass over 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the
+    // particles' threshold the HMX scene's 79,000 entries ran serially; with this one its
+    // 2-thread run took 0.90 of the time, whole process, and scenes of 20,000 entries lost
+    // nothing (docs/performance.md).
+    static constexpr std::ptrdiff_t node_parallel_threshold = 4 * parallel_threshold;
+
+    // Where particle i's mass goes in the nodal arrays (fields x nodes) at each node of its
+    // stencil: entries(i) gives a chooser, called with the stencil's nodes in their order
+    // (stencil::for_each, for_each_offset: every node), that returns the index of the field entry. One field
+    // per body: its body's block, whatever the node; one field in all: the only block (a
+    // compile-time zero). With a partition: the side chosen at the start of the step
+    // (stages::field_choice), node by node; once the consistent mass has listed the step's
+    // entries (stages::consistent_mass::list), read from that list instead (the same entries,
+    // without the side's arithmetic).
+    struct fixed_entry {
+        std::size_t base;
+        [[nodiscard]] std::size_t operator()(std::size_t node) const noexcept { return base + node; }
+    };
+    struct chosen_entry {
+        std::size_t base, nodes;
+        const std::uint8_t* side;    // advanced node by node
+        const std::uint32_t* list;   // the step's listed entries, or null
+        [[nodiscard]] std::size_t operator()(std::size_t node) noexcept {
+            if (list) {
+#ifndef NDEBUG
+                // The list holds what the sides give, node by node, only if every pass walks a
+                // whole stencil in order (a pass that stopped part-way would shift the next one).
+                assert(*list == base + std::size_t(*side) * nodes + node);
+                ++side;
+#endif
+                return *list++;
+            }
+            return base + std::size_t(*side++) * nodes + node;
+        }
+    };
+    [[nodiscard]] auto entries(std::size_t i) const noexcept {
+        if constexpr (!multi_field) {
+            return (void)i, fixed_entry{0};
+        } else {
+            const std::size_t body = particles_.template column<fields::body>()[i];
+            if constexpr (fields_per_body == 1) return fixed_entry{body * grid_.size()};
+            else
+                return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), fields_.sides(i),
+                                    consistent_mass_.list(i)};
+        }
+    }
+
+
+    // ---- the step's stages ---------------------------------------------------------------
+    //
+    // gimlet::solver's schemes (solver/solver.hpp) call these in their order, each timed by the
+    // scheme. The phases of docs/physics.md section 1 are fused where their arithmetic allows
+    // it, so a step makes few passes over the particles and the nodes: the weights, one scatter
+    // (mass, momentum and forces; USF without contact maps its forces after the stress update,
+    // USF with contact both), one node pass (v^n, momentum update, v^{n+1}), one gather (with
+    // MUSL's re-map scatter), one node pass for MUSL, and one particle pass that updates the
+    // material and checks the particle. Each quantity is computed with the same operations as
+    // in the unfused order; only the order in which a node sums its particles' contributions is
+    // the scatter's (see for_each_particle_by_slab).
+    //
+    // The stages the schemes call are defined below the class, in transfers.hpp and in
+    // particle_passes.hpp, not inline: an explicit instantiation of the core compiles them, and
+    // an `extern template` declaration keeps them out of a unit that runs a solver of another
+    // contact law on a shared core (its schemes are compiled there; docs/performance.md, "Memory,
+    // the largest scene, compile time").
+
+    // Whether the material's thermal policy provides the reference isentrope's energy e_s(J)
+    // (thermal::isentrope_temperature does), which the volume filter moves the energy along.
+    static constexpr bool has_reference_isentrope = requires(const typename M::thermal_type& t) {
+        { t.reference_energy(1.0) } -> std::convertible_to<double>;
+    };
+
+    // Wall-clock time of `f()`, added to `phase` (and to `part`, a part of that phase, if given).
+    template <class F>
+    static void timed(double& phase, F&& f, double* part = nullptr) {
+        using clock = std::chrono::steady_clock;
+        const auto start = clock::now();
+        f();
+        const double lap = std::chrono::duration<double>(clock::now() - start).count();
+        phase += lap;
+        if (part) *part += lap;
+    }
+
+    // The step's start: what changed between steps checked, and the guards of the time step this
+    // step takes counted (count_health).
+    void check_step_start();
+    // Weights at x^n of every particle.
+    void compute_stencils();
+
+    // The stencil of particle i, computed once and shared by every transfer of the step, and
+    // the slab its scatter belongs to.
+    void compute_stencil(std::size_t i) {
+        const auto p = particles_[i];
+        auto& st = stencils_[i];
+        st.template compute_with<Sh>(grid_, p.template get<fields::position>(), Sh::half_width(p, grid_.cell()));
+        slabs_.assign(i, st.first_row);
+    }
+
+    // f(i) for every particle, slab by slab and colour by colour (detail::slab_schedule): every
+    // Whether this step sorts the particles by cell first (solver_options::sort_interval).
+    [[nodiscard]] bool sort_due() const noexcept {
+        return options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0;
+    }
+    // The particles into the scatter's slabs, the partition's preparation and the step's fields
+    // (stages::field_choice).
+    void group_into_slabs();
+    // An empty grid for a step of `dt` (with volumetric averaging, the cells' mean stresses for
+    // the step's first force map).
+    void start_grid(real dt);
+    // The stages' own: the light particles (stages::light_particles) after the first scatter,
+    // the nodes several fields share (multi_field::exchange) for the contact passes.
+    void find_light_particles();
+    void find_shared_nodes();  // below the class
+    // USF's start-of-step grid velocities v^n (and v^{n+1} = v^n until the forces act), walls
+    // applied; after USF's trial contact pass, the grid forces cleared for the force map.
+    void start_of_step_velocities();
+    void clear_forces();
+    // MUSL: the nodal velocities of the re-mapped momenta, the grid update's wall decisions kept.
+    void remapped_velocities();
+    // Volumetric averaging (stages::volumetric_average), when solver_options::volumetric_average:
+    // the cells' mean volumetric rates from the step's grid velocities, and their mean stresses.
+    void average_volumetric_rates();
+    void average_mean_stress();
+    // The volume filter (stages::volume_filter), when solver_options::volume_filter.
+    void filter_volumes();
+    // What every scheme does last: the particle pass that updates the material (MUSL, USL) and
+    // checks every particle, and the clock.
+    void finish_step(real dt, bool update_materials);
+
+    // f(i) for every particle, slab by slab and colour by colour (detail::slab_schedule): every
+    // node sums its particles' contributions in an order fixed by the grid and the particle
+    // order, whatever the thread count. f must not throw.
+    template <class F>
+    void for_each_particle_by_slab(F&& f) {
+        slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+    }
+    // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
+    // or rows given to its view) must be one flag per row of the last axis: `what` names them.
+    void require_row_flags(const std::vector<std::uint8_t>& rows, const char* what) const {
+        const auto layers = static_cast<std::size_t>(grid_.nodes(dim - 1));
+        require(rows.size() == layers, what, double(rows.size()),
+                std::to_string(layers) + ": one flag per row of nodes along the last axis");
+    }
+    // The same as for_each_particle_by_slab, for the particles of the slabs whose stencils can
+    // reach a node row flagged in `rows` (slab_schedule::for_each_reaching).
+    template <class F>
+    void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f) {
+        slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+    }
+
+    // ---- transfers (solver/transfers.hpp): P2G, the grid update, G2P with the light nodes
+    // and the damping transfer
+    template <bool Forces>
+    void scatter();
+    // The scatters the step calls: mass, momentum and forces; USF's first, which maps the forces
+    // too only with contact; USF's force map after the stress update.
+    void scatter_all();
+    void scatter_for_usf();
+    void map_forces();
+    void nodal_velocity(std::vector<vector>& out);
+    void clear_grid();
+    void fill_entries(std::vector<vector>& out, const vector& value);
+    // f(e) for every grid entry of the field slots swept this step (stages::field_choice::swept),
+    // split between the threads on a large grid; f(e) writes entry e only.
+    template <class F>
+    void for_each_swept_entry(F&& f);
+    [[nodiscard]] std::size_t swept_fields() const noexcept { return fields_.swept(); }
+    // v^n (with_old_velocity), the consistent mass's forces (stages::consistent_mass), the
+    // momentum update and v^{n+1}, the walls.
+    void update_grid_momentum(real dt, bool with_old_velocity);
+    void grid_to_particles(real dt, bool remap);
+    template <bool Lights>
+    void grid_to_particles_pass(real dt, bool remap);
+    [[nodiscard]] bool on_light_node(std::size_t e, real w, const vector& g) const;
+    [[nodiscard]] vector light_node_change(std::size_t i, real dt) const;
+
+    // ---- particle passes (solver/particle_passes.hpp): the material update, the step's last
+    // pass, sorting
+    void update_material_points(real dt);
+    template <class After>
+    std::ptrdiff_t material_pass(real dt, const std::vector<vector>& vg, bool update_materials, After&& after);
+    void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg);
+    [[nodiscard]] matrix velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
+    // How many particles the material passes update at once: two in the lanes of one vector
+    // where the material allows it (lanes_capable, update_material_pair), else one.
+    static constexpr std::ptrdiff_t material_group = lanes_capable<M, S> ? 2 : 1;
+    [[nodiscard]] bool update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg);
+    [[nodiscard]] matrix force_stress(std::size_t i) const;
+    void sort_by_cell();
+
+    // What a partition's hooks see (multi_field::partition_view).
+    struct slab_caller {
+        solver_core* self;
+        template <class F>
+        void operator()(F&& f) const { self->for_each_particle_by_slab(std::forward<F>(f)); }
+        template <class F>
+        void operator()(const std::vector<std::uint8_t>& rows, F&& f) const {
+            self->require_row_flags(rows, "rows given to for_each_particle_by_slab (their count)");
+            self->for_each_particle_by_slab_reaching(rows, std::forward<F>(f));
+        }
+    };
+    struct index_caller {
+        solver_core* self;
+        template <class F>
+        void operator()(std::size_t count, F&& f) const {
+            const auto n = static_cast<std::ptrdiff_t>(count);
+            detail::thread_shares shares(n, self->threads(), n >= node_parallel_threshold);
+            GIMLET_OMP(parallel num_threads(shares.team()))
+            for (auto claimed = shares.start(); shares.claim(claimed);)
+                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
+        }
+    };
+    template <class Store>
+    using partition_view_type =
+        multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller, index_caller>;
+    template <class Store>
+    [[nodiscard]] partition_view_type<Store> partition_view() {
+        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}, index_caller{this}};
+    }
+
+
+    // The guards of the time step this step takes (stable_time_step), into health_.
+    void count_health() {
+        pending_health_.commit(health_, steps_, [&](std::size_t i) {
+            return describe_particle(particles_[i], steps_, double(time_));
+        });
+    }
+
+    // State set before the first step or changed between steps (by the user or a restart) is
+    // checked before anything uses it, so a bad value is blamed on its own particle, not on a
+    // neighbour or on the time step it would spoil.
+    void check_pending() {
+        if (!state_touched_) return;
+        check_particles();
+        check_light_possible();  // the masses or volumes may have changed
+        state_touched_ = false;
+    }
+
+    // Whether any particle can be light (stages::light_particles::check_possible): out of the
+    // class, as check_pending is reached from every unit that steps a solver.
+    void check_light_possible();  // below the class
+
+    // Stop on non-finite values, inverted particles or particles off the grid; report the
+    // lowest-numbered offender so the message does not depend on the thread count.
+    void check_particles();  // below the class
+
+    [[nodiscard]] bool healthy(std::size_t i) const { return detail::particle_healthy(particles_[i], grid_); }
+    [[nodiscard]] std::string problem(std::size_t i) const { return detail::particle_problem(particles_[i], grid_); }
+
+    [[noreturn]] void fail(std::size_t i, const std::string& what) const {
+        throw numerical_error(describe_particle(particles_[i], steps_, double(time_)) + ": " + what);
+    }
+
+    // The stages are friends: each reads and writes what its class comment lists.
+    template <Space>
+    friend class stages::light_particles;
+    template <Space, std::size_t>
+    friend class stages::consistent_mass;
+    template <Space>
+    friend class stages::volume_filter;
+    template <Space>
+    friend class stages::volumetric_average;
+    template <std::size_t, std::size_t>
+    friend class stages::field_choice;
+
+    // What the stages share: the scene's state, the step's weights and slabs, the grid.
+    solver_options<S> options_;
+    grid<S> grid_;
+    std::vector<M> materials_;
+    store_type particles_;
+    std::vector<stencil_type> stencils_;
+    // The scatter's slabs of node rows (for_each_particle_by_slab).
+    detail::slab_schedule<std::max(Sh::stencil - 1, 1)> slabs_;
+    real mass_cutoff_ = 0;
+    std::vector<vector> wall_free_;  // per node entry: 1 where the walls leave a force component free
+    Part partition_;
+    multi_field::exchange<S> exchange_;  // multi-field contact only (empty otherwise)
+
+    // The optional stages, each with its own state (solver/stages/).
+    stages::field_choice<fields_per_body, stencil_type::nodes> fields_;
+    stages::light_particles<S> lights_;
+    stages::consistent_mass<S, stencil_type::nodes> consistent_mass_;
+    stages::volume_filter<S> volume_filter_;
+    stages::volumetric_average<S> volumetric_average_;
+
+    // The step's own state: the clock, the counters, the checks between steps.
+    real dt_ = 0;  // the step's size, for the contact passes
+    real time_ = 0;
+    std::uint64_t steps_ = 0;
+    step_timings timings_;
+    health_events health_;
+    mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
+    bool state_touched_ = true;  // the scene's particles are checked before the first step
+};
+
+// Members defined outside their class: not inline, so that an `extern template` declaration of
+// the core keeps them, and the stages they lead to, out of a unit that only constructs and runs
+// a solver (docs/performance.md, "Memory, the largest scene, compile time").
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
+                         std::optional<double> friction)
+    : options_(options), grid_(sc.grid(), Sh::stencil), partition_(partition) {
+    detail::check_setup(sc, options_, friction);
+    for (const auto& b : sc.bodies()) materials_.push_back(b.material);
+    detail::seed_particles(sc, grid_, particles_);
+    real heaviest = 0;
+    for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
+    mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
+    check_light_possible();
+    // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
+    // them; a single-field policy keeps one.
+    const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
+    // Refused before the nodal arrays are allocated.
+    detail::check_options_for(options_, has_reference_isentrope, grid_.size() * fields);
+    if constexpr (multi_field) grid_.set_field_count(fields);
+    // Which components of a node's force the walls leave free (1) or take (0): the projection
+    // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
+    wall_free_.assign(grid_.entries(), vector::Ones());
+    grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
+    slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
+    if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
+        compute_stencils();
+        slabs_.bucket();
+        auto view = partition_view<store_type>();
+        partition_.initialize(view);
+    }
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+solver_core<S, Sh, M, Fields, MultiField, Part>::~solver_core() = default;
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::stable_time_step() const -> real {
+    return detail::stable_time_step(particles_, materials_, grid_, options_, threads(), parallel_threshold, steps_,
+                                    pending_health_);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::check_particles() {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    auto& x = particles_.template column<fields::position>();
+    std::ptrdiff_t first_bad = n;
+    detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel reduction(min : first_bad) num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            grid_.wrap(x[i]);
+            if (!problem(i).empty()) first_bad = std::min(first_bad, k);
+        }
+    if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::check_step_start() {
+    check_pending();
+    count_health();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::group_into_slabs() {
+    slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
+    fields_.prepare(*this);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::start_grid(real dt) {
+    dt_ = dt;
+    if (options_.volumetric_average) average_mean_stress();
+    clear_grid();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::find_light_particles() {
+    lights_.find(*this);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::start_of_step_velocities() {
+    nodal_velocity(grid_.velocity_old);
+    grid_.velocity = grid_.velocity_old;
+    grid_.apply_walls(grid_.velocity);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::clear_forces() {
+    std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::remapped_velocities() {
+    nodal_velocity(grid_.velocity);
+    grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::average_volumetric_rates() {
+    volumetric_average_.average_rates(*this, grid_.velocity);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::average_mean_stress() {
+    volumetric_average_.average_stress(*this);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::filter_volumes() {
+    if constexpr (has_reference_isentrope) volume_filter_.apply(*this);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils() {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+    stencils_.resize(particles_.size());
+    slabs_.resize(particles_.size());
+    detail::thread_shares shares(n, threads(), n >= parallel_threshold);
+    GIMLET_OMP(parallel num_threads(shares.team()))
+    for (auto claimed = shares.start(); shares.claim(claimed);)
+        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) compute_stencil(static_cast<std::size_t>(i));
+
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::check_light_possible() {
+    lights_.check_possible(*this);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
+    exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
+                                particles_.template column<fields::mass>(), fields_per_body,
+                                [&](std::size_t i) { return entries(i); },
+                                [&](const std::vector<std::uint8_t>& rows, auto&& f) {
+                                    for_each_particle_by_slab_reaching(rows, f);
+                                },
+                                threads(),
+                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_all() {
+    scatter<true>();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_for_usf() {
+    if constexpr (multi_field) scatter<true>();
+    else scatter<false>();
+}
+
+}  // namespace gimlet
