@@ -176,24 +176,21 @@ private:
     // region with GCC's and LLVM's runtimes; the OpenMP standard does not promise it.) So a
     // particle's data and a slab's nodes stay near one core, in its caches, from pass to pass
     // (binding the threads, OMP_PROC_BIND and OMP_PLACES, keeps each thread on its core):
-    // shares handed out on demand moved about half of them between the cores in every pass,
-    // and on a 2-core host where that cost as much as the work, 2 threads ran the elastic step
-    // no faster than 1. And a slow core (another job on it, a busy neighbour of a virtual
-    // machine) or a share of costlier particles holds up the loop by no more than the chunk its
-    // thread has claimed, where fixed shares alone waited for the whole share: on 16 cores
-    // those ran at 0.59-1.06 of the rate of shares handed out on demand (docs/performance.md,
-    // "Each thread its own particles" and "Shares that are taken over").
+    // shares handed out on demand move about half of them between the cores in every pass,
+    // which on a 2-core host costs as much as the work. And a slow core (another job on it, a
+    // busy neighbour of a virtual machine) or a share of costlier particles holds up the loop by
+    // no more than the chunk its thread has claimed, where fixed shares alone wait for the whole
+    // share (docs/performance.md, "Each thread its own particles" and "Shares that are taken
+    // over").
     // Every particle's result, and every node's sum (slab by slab, in particle order), is
     // independent of which thread runs it, so the schedule costs no determinism.
     //
     // Loops shorter than this run on one thread: below it, starting a team costs more than the
     // loop (and a team on a busy machine can stall the whole step).
     static constexpr std::ptrdiff_t parallel_threshold = 4096;
-    // A threshold likewise for loops over grid nodes, whose bodies cost a few nanoseconds each: a
-    // pass over 16,000 entries takes some 30 us, waking a sleeping thread a few. At 32 times the
-    // particles' threshold the HMX scene's 79,000 entries ran serially; with this one its
-    // 2-thread run took 0.90 of the time, whole process, and scenes of 20,000 entries lost
-    // nothing (docs/performance.md).
+    // A threshold likewise for loops over grid nodes, whose bodies cost a few nanoseconds each:
+    // a pass over 16,000 entries takes some 30 us, waking a sleeping thread a few
+    // (docs/performance.md).
     static constexpr std::ptrdiff_t node_parallel_threshold = 4 * parallel_threshold;
 
     // Where particle i's mass goes in the nodal arrays (fields x nodes) at each node of its

@@ -119,7 +119,7 @@ private:
     void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F&& f) const {
         // Each thread the same slabs of a colour in every pass, so their particles and nodes
         // stay near its core, and a thread done early takes over slabs of the others' shares
-        // (thread_shares; solver.hpp, above parallel_threshold, says why). A colour's slabs
+        // (thread_shares; solver/core.hpp, above parallel_threshold, says why). A colour's slabs
         // are shared by count, not by the particles they hold (a split by particles measured
         // no faster on 2 threads: docs/performance.md, "Each thread its own particles").
         colour_shares shares(colour_slabs_, threads, parallel);

@@ -92,9 +92,8 @@ private:
         sides_.resize(particles.size());  // entries added are zero
         // A partition that says it splits nothing this step puts every particle in its body's
         // first field at once: every side 0, which they all still are after a step that split
-        // nothing (the fill, one thread over a byte per stencil node of every particle, ran every
-        // such step: about 0.1 ms at 216,000 particles in 2-D, a serial part of the step;
-        // docs/performance.md).
+        // nothing, so the fill (one thread over a byte per stencil node of every particle, a
+        // serial part of the step) runs only after a step that split.
         if (!split_now_) {
             if (!sides_zero_) std::fill(sides_.begin(), sides_.end(), std::array<std::uint8_t, Nodes>{});
             sides_zero_ = true;

@@ -74,178 +74,213 @@ public:
     void apply(Core& c) {
         if constexpr (Core::has_reference_isentrope) {
             if (!c.options_.volume_filter) return;
-            const int iterations = c.options_.consistent_mass_iterations;  // >= 1 (solver_options::validate)
-            // One block of node entries per body: key(i, e) is particle i's body's copy of entry e.
-            const std::size_t ne = c.grid_.entries(), nk = ne * c.materials_.size();
-            const auto keys = static_cast<std::ptrdiff_t>(nk);
-            const bool parallel_nodes = keys >= Core::node_parallel_threshold;
-            const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
-            const auto& mass = c.particles_.template column<fields::mass>();
-            auto& F = c.particles_.template column<fields::deformation_gradient>();
-            auto& e = c.particles_.template column<fields::specific_internal_energy>();
-            const auto& body = c.particles_.template column<fields::body>();
+            // One block of node entries per body: particle i's body's copy of entry e.
+            const std::size_t nk = c.grid_.entries() * c.materials_.size();
             first_.resize(nk);
             value_.resize(nk);
             product_.resize(nk);
             mass_.resize(nk);
             particle_.resize(c.particles_.size());
             heavy_.resize(c.particles_.size());
-            const std::vector<real>& heavy = heavy_;
-
-            // Each particle's weight on the nodes above the mass cut-off (the weights below are
-            // renormalised by it, so that a particle's weights over those nodes sum to one).
-            detail::thread_shares heavy_shares(n, c.threads(), n >= Core::parallel_threshold);
-            GIMLET_OMP(parallel num_threads(heavy_shares.team()))
-            for (auto claimed = heavy_shares.start(); heavy_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto i = static_cast<std::size_t>(k);
-                    auto at = c.entries(i);
-                    real w_heavy = 0;
-                    c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                        if (c.grid_.mass[at(node)] > c.mass_cutoff_) w_heavy += w;
-                    });
-                    heavy_[i] = w_heavy;
-                }
-            // out_k = sum_p (S_ip / heavy_p) value(p) over the nodes above the cut-off, slab by slab.
-            auto scatter = [&](std::vector<real>& out, auto&& value) {
-                std::fill(out.begin(), out.end(), real(0));
-                c.for_each_particle_by_slab([&](std::size_t i) {
-                    if (!(heavy[i] > 0)) return;
-                    const real v = value(i) / heavy[i];
-                    const std::size_t base = std::size_t(body[i]) * ne;
-                    auto at = c.entries(i);
-                    c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                        const std::size_t k = at(node);
-                        if (c.grid_.mass[k] > c.mass_cutoff_) out[base + k] += w * v;
-                    });
-                });
-            };
-            // particle_[p] = sum_i (S_ip / heavy_p) c_i over the nodes above the cut-off (own(p)
-            // for a particle that reaches none).
-            auto gather = [&](const std::vector<real>& values, auto&& own) {
-                detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
-                GIMLET_OMP(parallel num_threads(shares.team()))
-                for (auto claimed = shares.start(); shares.claim(claimed);)
-                    for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                        const auto i = static_cast<std::size_t>(k);
-                        if (!(heavy[i] > 0)) {
-                            particle_[i] = own(i);
-                            continue;
-                        }
-                        const std::size_t base = std::size_t(body[i]) * ne;
-                        auto at = c.entries(i);
-                        real sum = 0;
-                        c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
-                            const std::size_t j = at(node);
-                            if (c.grid_.mass[j] > c.mass_cutoff_) sum += w * values[base + j];
-                        });
-                        particle_[i] = sum / heavy[i];
-                    }
-            };
-
-            // The masses as the renormalised weights see them, and c0: the mass-weighted mean J of
-            // the particles reaching each node.
-            scatter(mass_, [&](std::size_t i) { return mass[i]; });
-            scatter(first_, [&](std::size_t i) { return mass[i] * F[i].determinant(); });
-            detail::thread_shares first_shares(keys, c.threads(), parallel_nodes);
-            GIMLET_OMP(parallel num_threads(first_shares.team()))
-            for (auto claimed = first_shares.start(); first_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto j = static_cast<std::size_t>(k);
-                    first_[j] = mass_[j] > 0 ? first_[j] / mass_[j] : real(0);
-                    value_[j] = first_[j];
-                }
-            // c^(j+1) = c0 + c^(j) - (M c^(j)) / m, M c a gather to the particles and a scatter of
-            // m_p (S c)_p back (consistent_mass.hpp); a uniform J is its fixed point.
-            for (int it = 0; it < iterations; ++it) {
-                gather(value_, [&](std::size_t) { return real(0); });
-                scatter(product_, [&](std::size_t i) { return mass[i] * particle_[i]; });
-                detail::thread_shares shares(keys, c.threads(), parallel_nodes);
-                GIMLET_OMP(parallel num_threads(shares.team()))
-                for (auto claimed = shares.start(); shares.claim(claimed);)
-                    for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                        const auto j = static_cast<std::size_t>(k);
-                        if (mass_[j] > 0) value_[j] = first_[j] + value_[j] - product_[j] / mass_[j];
-                    }
-            }
-            // The new J (a particle that reaches no node above the cut-off keeps its own), and each
-            // particle's e_s there and at its J, checked before anything changes: the first particle
-            // (lowest index) whose J_new is not a positive number, or whose e_s its thermal policy
-            // refuses, stops the run with the state as it was.
-            gather(value_, [&](std::size_t i) { return real(F[i].determinant()); });
-            std::vector<double>& es_change = es_change_;
-            es_change.assign(c.particles_.size(), 0.0);
-            std::ptrdiff_t failed = n;
-            std::exception_ptr error;
-            detail::thread_shares check_shares(n, c.threads(), n >= Core::parallel_threshold);
-            GIMLET_OMP(parallel num_threads(check_shares.team()))
-            for (auto claimed = check_shares.start(); check_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto i = static_cast<std::size_t>(k);
-                    const real j_old = F[i].determinant(), j_new = particle_[i];
-                    if (j_new == j_old) continue;
-                    try {
-                        if (!(std::isfinite(j_new) && j_new > 0))
-                            throw std::domain_error("not a positive number");
-                        const auto& thermal = c.materials_[body[i]].thermal;
-                        es_change[i] = thermal.reference_energy(double(j_new)) - thermal.reference_energy(double(j_old));
-                    } catch (...) {
-                        GIMLET_OMP(critical(gimlet_volume_filter_error))
-                        if (k < failed) failed = k, error = std::current_exception();
-                    }
-                }
-            if (error) {
-                const auto i = static_cast<std::size_t>(failed);
-                std::string why;
-                try {
-                    std::rethrow_exception(error);
-                } catch (const std::exception& x) {
-                    why = x.what();
-                } catch (...) {
-                    why = "an unknown exception";
-                }
-                c.fail(i, "the volume filter projected J = " + detail::to_text(double(F[i].determinant())) + " to " +
-                            detail::to_text(double(particle_[i])) + ", which the reference isentrope refuses (" + why + ")");
-            }
-            // Apply: F scaled to J_new, e moved along the isentrope.
-            detail::thread_shares apply_shares(n, c.threads(), n >= Core::parallel_threshold);
-            GIMLET_OMP(parallel num_threads(apply_shares.team()))
-            for (auto claimed = apply_shares.start(); apply_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto i = static_cast<std::size_t>(k);
-                    if (es_change[i] == 0.0) continue;
-                    const real j_old = F[i].determinant(), j_new = particle_[i];
-                    F[i] *= std::pow(j_new / j_old, real(1) / real(S::dim));
-                    e[i] += real(es_change[i]);
-                }
-            // The heat: each particle's release m_p (e_s(J) - e_s(J_new)) through the nodes; the node
-            // sums of the total's sign, scaled to the total, back to the particles per unit mass
-            // (sum_p m_p heat_p = total exactly).
-            scatter(product_, [&](std::size_t i) { return -mass[i] * real(es_change[i]); });
-            real total = 0;
-            for (std::size_t j = 0; j < nk; ++j) total += product_[j];
-            auto counted = [&](real node_sum) { return node_sum != 0 && (node_sum > 0) == (total > 0); };
-            real same_sign = 0;
-            for (std::size_t j = 0; j < nk; ++j)
-                if (counted(product_[j])) same_sign += product_[j];
-            if (total == 0 || same_sign == 0) return;
-            const real scale = total / same_sign;
-            detail::thread_shares heat_shares(keys, c.threads(), parallel_nodes);
-            GIMLET_OMP(parallel num_threads(heat_shares.team()))
-            for (auto claimed = heat_shares.start(); heat_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-                    const auto j = static_cast<std::size_t>(k);
-                    value_[j] = mass_[j] > 0 && counted(product_[j]) ? product_[j] * scale / mass_[j] : real(0);
-                }
-            gather(value_, [&](std::size_t) { return real(0); });
-            detail::thread_shares add_shares(n, c.threads(), n >= Core::parallel_threshold);
-            GIMLET_OMP(parallel num_threads(add_shares.team()))
-            for (auto claimed = add_shares.start(); add_shares.claim(claimed);)
-                for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) e[static_cast<std::size_t>(k)] += particle_[static_cast<std::size_t>(k)];
+            weights_on_heavy_nodes(c);
+            project(c);
+            check_projection(c);
+            move_along_isentrope(c);
+            return_heat(c);
         }
     }
 
 private:
+    // Each particle's weight on the nodes above the mass cut-off (the weights below are
+    // renormalised by it, so that a particle's weights over those nodes sum to one).
+    template <class Core>
+    void weights_on_heavy_nodes(Core& c) {
+        const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
+        detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                auto at = c.entries(i);
+                real w_heavy = 0;
+                c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                    if (c.grid_.mass[at(node)] > c.mass_cutoff_) w_heavy += w;
+                });
+                heavy_[i] = w_heavy;
+            }
+    }
+
+    // out_k = sum_p (S_ip / heavy_p) value(p) over the nodes above the cut-off, slab by slab.
+    template <class Core, class Value>
+    void scatter(Core& c, std::vector<real>& out, Value&& value) {
+        const auto& body = c.particles_.template column<fields::body>();
+        const std::size_t ne = c.grid_.entries();
+        std::fill(out.begin(), out.end(), real(0));
+        c.for_each_particle_by_slab([&](std::size_t i) {
+            if (!(heavy_[i] > 0)) return;
+            const real v = value(i) / heavy_[i];
+            const std::size_t base = std::size_t(body[i]) * ne;
+            auto at = c.entries(i);
+            c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t k = at(node);
+                if (c.grid_.mass[k] > c.mass_cutoff_) out[base + k] += w * v;
+            });
+        });
+    }
+
+    // particle_[p] = sum_i (S_ip / heavy_p) values_i over the nodes above the cut-off (own(p)
+    // for a particle that reaches none).
+    template <class Core, class Own>
+    void gather(Core& c, const std::vector<real>& values, Own&& own) {
+        const auto& body = c.particles_.template column<fields::body>();
+        const std::size_t ne = c.grid_.entries();
+        const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
+        detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                if (!(heavy_[i] > 0)) {
+                    particle_[i] = own(i);
+                    continue;
+                }
+                const std::size_t base = std::size_t(body[i]) * ne;
+                auto at = c.entries(i);
+                real sum = 0;
+                c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
+                    const std::size_t j = at(node);
+                    if (c.grid_.mass[j] > c.mass_cutoff_) sum += w * values[base + j];
+                });
+                particle_[i] = sum / heavy_[i];
+            }
+    }
+
+    // f(j) for every node entry of every body, split between the threads on a large grid.
+    template <class Core, class F>
+    void for_each_key(Core& c, F&& f) {
+        const auto keys = static_cast<std::ptrdiff_t>(mass_.size());
+        detail::thread_shares shares(keys, c.threads(), keys >= Core::node_parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
+    }
+
+    // The projection c into value_, and its values at the particles, the new J, into particle_
+    // (a particle that reaches no node above the cut-off keeps its own J). First the masses as
+    // the renormalised weights see them, and c0: the mass-weighted mean J of the particles
+    // reaching each node. Then c^(j+1) = c0 + c^(j) - (M c^(j)) / m, M c a gather to the particles
+    // and a scatter of m_p (S c)_p back (stages/consistent_mass.hpp); a uniform J is its fixed
+    // point.
+    template <class Core>
+    void project(Core& c) {
+        const auto& mass = c.particles_.template column<fields::mass>();
+        const auto& F = c.particles_.template column<fields::deformation_gradient>();
+        scatter(c, mass_, [&](std::size_t i) { return mass[i]; });
+        scatter(c, first_, [&](std::size_t i) { return mass[i] * F[i].determinant(); });
+        for_each_key(c, [&](std::size_t j) {
+            first_[j] = mass_[j] > 0 ? first_[j] / mass_[j] : real(0);
+            value_[j] = first_[j];
+        });
+        const int iterations = c.options_.consistent_mass_iterations;  // >= 1 (solver_options::validate)
+        for (int it = 0; it < iterations; ++it) {
+            gather(c, value_, [&](std::size_t) { return real(0); });
+            scatter(c, product_, [&](std::size_t i) { return mass[i] * particle_[i]; });
+            for_each_key(c, [&](std::size_t j) {
+                if (mass_[j] > 0) value_[j] = first_[j] + value_[j] - product_[j] / mass_[j];
+            });
+        }
+        gather(c, value_, [&](std::size_t i) { return real(F[i].determinant()); });
+    }
+
+    // Each particle's change of e_s from its J to the new J, into es_change_, checked before
+    // anything changes: the first particle (lowest index) whose new J is not a positive number,
+    // or whose e_s its thermal policy refuses, stops the run with the state as it was.
+    template <class Core>
+    void check_projection(Core& c) {
+        const auto& F = c.particles_.template column<fields::deformation_gradient>();
+        const auto& body = c.particles_.template column<fields::body>();
+        const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
+        es_change_.assign(c.particles_.size(), 0.0);
+        std::ptrdiff_t failed = n;
+        std::exception_ptr error;
+        detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const real j_old = F[i].determinant(), j_new = particle_[i];
+                if (j_new == j_old) continue;
+                try {
+                    if (!(std::isfinite(j_new) && j_new > 0))
+                        throw std::domain_error("not a positive number");
+                    const auto& thermal = c.materials_[body[i]].thermal;
+                    es_change_[i] = thermal.reference_energy(double(j_new)) - thermal.reference_energy(double(j_old));
+                } catch (...) {
+                    GIMLET_OMP(critical(gimlet_volume_filter_error))
+                    if (k < failed) failed = k, error = std::current_exception();
+                }
+            }
+        if (!error) return;
+        const auto i = static_cast<std::size_t>(failed);
+        std::string why;
+        try {
+            std::rethrow_exception(error);
+        } catch (const std::exception& x) {
+            why = x.what();
+        } catch (...) {
+            why = "an unknown exception";
+        }
+        c.fail(i, "the volume filter projected J = " + detail::to_text(double(F[i].determinant())) + " to " +
+                      detail::to_text(double(particle_[i])) + ", which the reference isentrope refuses (" + why + ")");
+    }
+
+    // F scaled to the new J, e moved along the isentrope.
+    template <class Core>
+    void move_along_isentrope(Core& c) {
+        auto& F = c.particles_.template column<fields::deformation_gradient>();
+        auto& e = c.particles_.template column<fields::specific_internal_energy>();
+        const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
+        detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                if (es_change_[i] == 0.0) continue;
+                const real j_old = F[i].determinant(), j_new = particle_[i];
+                F[i] *= std::pow(j_new / j_old, real(1) / real(S::dim));
+                e[i] += real(es_change_[i]);
+            }
+    }
+
+    // The heat: each particle's release m_p (e_s(J) - e_s(J_new)) through the nodes; the node
+    // sums of the total's sign, scaled to the total, back to the particles per unit mass
+    // (sum_p m_p heat_p = total exactly).
+    template <class Core>
+    void return_heat(Core& c) {
+        const auto& mass = c.particles_.template column<fields::mass>();
+        auto& e = c.particles_.template column<fields::specific_internal_energy>();
+        const std::size_t nk = product_.size();
+        scatter(c, product_, [&](std::size_t i) { return -mass[i] * real(es_change_[i]); });
+        real total = 0;
+        for (std::size_t j = 0; j < nk; ++j) total += product_[j];
+        auto counted = [&](real node_sum) { return node_sum != 0 && (node_sum > 0) == (total > 0); };
+        real same_sign = 0;
+        for (std::size_t j = 0; j < nk; ++j)
+            if (counted(product_[j])) same_sign += product_[j];
+        if (total == 0 || same_sign == 0) return;
+        const real scale = total / same_sign;
+        for_each_key(c, [&](std::size_t j) {
+            value_[j] = mass_[j] > 0 && counted(product_[j]) ? product_[j] * scale / mass_[j] : real(0);
+        });
+        gather(c, value_, [&](std::size_t) { return real(0); });
+        const auto n = static_cast<std::ptrdiff_t>(c.particles_.size());
+        detail::thread_shares shares(n, c.threads(), n >= Core::parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
+                e[static_cast<std::size_t>(k)] += particle_[static_cast<std::size_t>(k)];
+    }
+
     // Per body and node entry the lumped projection of J, the iterate, M times it (and the
     // releases), the masses as the renormalised weights see them; per particle the gathered
     // values, the weight on the nodes above the cut-off and the change of e_s.
