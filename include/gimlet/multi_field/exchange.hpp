@@ -78,78 +78,8 @@ public:
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
                            const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
                            int threads = 1, bool parallel = false) {
-        const std::size_t nodes = grid.size(), fields_n = grid.field_count();
-        constexpr std::size_t block = 4096;
-        const std::size_t blocks = (nodes + block - 1) / block;
-        constexpr std::size_t max_k = contact::node_view<S>::max_fields;
-        shared_index_.resize(nodes);
-        block_count_.assign(blocks, {});
-        // The fields above the cut-off at a node, in field order (at most max_k + 1 asked for).
-        auto fields_at = [&](std::size_t node, std::uint32_t* out) {
-            std::size_t k = 0;
-            for (std::size_t f = 0; f < fields_n; ++f)
-                if (grid.mass[f * nodes + node] > cutoff) {
-                    if (k <= max_k) out[k] = static_cast<std::uint32_t>(f);
-                    ++k;
-                }
-            return k;
-        };
-        const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
-        gimlet::detail::thread_shares count_shares(blocks_n, threads, parallel);
-        GIMLET_OMP(parallel num_threads(count_shares.team()))
-        for (auto claimed = count_shares.start(); count_shares.claim(claimed);)
-            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
-                block_counts& c = block_count_[std::size_t(b)];
-                std::uint32_t ids[max_k + 1];
-                for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
-                    const std::size_t k = fields_at(node, ids);
-                    shared_index_[node] = k < 2 ? -1 : 0;
-                    if (k < 2) continue;
-                    if (k > max_k) {
-                        c.too_many = std::min(c.too_many, node);
-                        continue;
-                    }
-                    ++c.nodes, c.fields += k, c.pairs += k * k;
-                }
-            }
-        block_counts total{};
-        for (block_counts& c : block_count_) {
-            if (c.too_many < nodes) {  // the lowest such node, as a serial pass would stop at
-                std::uint32_t ids[max_k + 1];
-                const std::size_t k = fields_at(c.too_many, ids);
-                std::string list;
-                for (std::size_t f = 0; f < fields_n; ++f)
-                    if (grid.mass[f * nodes + c.too_many] > cutoff) list += (list.empty() ? "" : ", ") + std::to_string(f);
-                throw numerical_error("gimlet: step " + std::to_string(step) + " (t = " +
-                                      gimlet::detail::to_text(time) + " s): grid node at " +
-                                      gimlet::detail::format_position(grid.node_position(c.too_many)) + " is shared by " +
-                                      std::to_string(k) + " velocity fields (" + list + "); multi-field contact handles at most " +
-                                      std::to_string(max_k) + " at one node");
-            }
-            const block_counts start{total.nodes, total.fields, total.pairs, nodes};
-            total.nodes += c.nodes, total.fields += c.fields, total.pairs += c.pairs;
-            c = start;  // the block's offsets from here on
-        }
-        shared_.resize(total.nodes), shared_field_.resize(total.fields), shared_owner_.resize(total.fields);
-        shared_normal_.resize(total.fields), shared_pair_normal_.resize(total.pairs);
-        gimlet::detail::thread_shares fill_shares(blocks_n, threads, parallel);
-        GIMLET_OMP(parallel num_threads(fill_shares.team()))
-        for (auto claimed = fill_shares.start(); fill_shares.claim(claimed);)
-            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
-                block_counts at = block_count_[std::size_t(b)];
-                for (std::size_t node = std::size_t(b) * block, last = std::min(nodes, node + block); node < last; ++node) {
-                    if (shared_index_[node] < 0) continue;
-                    const std::size_t first = at.fields;
-                    const std::size_t k = fields_at(node, shared_field_.data() + first);
-                    shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
-                    shared_[at.nodes] = {node, first, k, at.pairs};
-                    for (std::size_t j = 0; j < k; ++j) {
-                        shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
-                        shared_normal_[first + j] = vector::Zero();  // the mass gradient's sum, below
-                    }
-                    ++at.nodes, at.fields += k, at.pairs += k * k;
-                }
-            }
+        count_shared(grid, cutoff, step, time, threads, parallel);
+        list_shared(grid, cutoff, fields_per_body, threads, parallel);
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));
         slip_fraction_.assign(shared_pair_normal_.size(), real(0));
@@ -160,67 +90,9 @@ public:
         const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
         shared_row_.assign(rows, 0);
         for (const shared_node& sn : shared_) shared_row_[std::size_t(grid.layer(sn.node))] = 1;
-        // Each shared field's mass gradient sum_p m_p G_ip, at the shared nodes only (the only
-        // place it is read): summed into shared_normal_ by the particles that reach a shared
-        // row, slab by slab as the scatter visits them, so each node's sum has the scatter's
-        // terms in the scatter's order, whatever the thread count. G is the gradient with
-        // respect to the particle position, so the sum points out of the body (docs/physics.md
-        // section 3; Bardenhagen et al. 2000, eq. 16).
-        for_each_particle(shared_row_, [&](std::size_t i) {
-            auto entry = entries_of(i);
-            const real mp = mass[i];
-            stencils[i].for_each([&](std::size_t node, real, const vector& g) {
-                const std::size_t e = entry(node);  // asked at every node, in order
-                const std::ptrdiff_t s = shared_index_[node];
-                if (s < 0) return;
-                const shared_node& sn = shared_[std::size_t(s)];
-                const std::size_t field = (e - node) / nodes;
-                for (std::size_t a = 0; a < sn.count; ++a)
-                    if (shared_field_[sn.first_field + a] == field) {
-                        shared_normal_[sn.first_field + a] += mp * g;
-                        return;
-                    }  // else below the cut-off at this node
-            });
-        });
-        // The fields' unit normals and each pair's normal, node by node.
-        const auto shared_n = static_cast<std::ptrdiff_t>(shared_.size());
-        gimlet::detail::thread_shares normal_shares(shared_n, threads, parallel && shared_n >= std::ptrdiff_t(block));
-        GIMLET_OMP(parallel num_threads(normal_shares.team()))
-        for (auto claimed = normal_shares.start(); normal_shares.claim(claimed);)
-            for (std::ptrdiff_t s = claimed.first, end = claimed.last; s < end; ++s) {
-                const shared_node& sn = shared_[std::size_t(s)];
-                const std::size_t first = sn.first_field, k = sn.count;
-                for (std::size_t j = 0; j < k; ++j) {
-                    const vector g = shared_normal_[first + j];
-                    const real len = g.norm();
-                    shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
-                }
-                // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
-                for (std::size_t a = 0; a < k; ++a)
-                    for (std::size_t b2 = 0; b2 < k; ++b2)
-                        shared_pair_normal_[sn.first_pair + a * k + b2] =
-                            a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2]) : vector::Zero();
-            }
-        // Particles of one node are visited by one thread at a time (slab colouring), and a
-        // maximum does not depend on the order: the result is the same for any thread count.
-        for_each_particle(shared_row_, [&](std::size_t i) {
-            auto entry = entries_of(i);
-            stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, real w, const vector& r) {
-                const std::size_t e = entry(node);  // asked at every node, in order
-                const std::ptrdiff_t s = shared_index_[node];
-                if (s < 0 || !(w > real(0))) return;  // a node the particle does not weigh
-                const std::size_t field = (e - node) / nodes;
-                const shared_node& sn = shared_[std::size_t(s)];
-                std::size_t a = 0;
-                while (a < sn.count && shared_field_[sn.first_field + a] != field) ++a;
-                if (a == sn.count) return;  // below the cut-off at this node
-                for (std::size_t b = 0; b < sn.count; ++b) {
-                    if (b == a) continue;
-                    const std::size_t slot = sn.first_pair + a * sn.count + b;
-                    shared_reach_[slot] = std::max(shared_reach_[slot], r.dot(shared_pair_normal_[slot]));
-                }
-            });
-        });
+        sum_mass_gradients(grid, stencils, mass, entries_of, for_each_particle);
+        normals(threads, parallel);
+        reaches(grid, stencils, entries_of, for_each_particle);
     }
 
     // At every node shared by two or more fields, let the contact policy correct the fields'
@@ -323,6 +195,174 @@ public:
     }
 
 private:
+    static constexpr std::size_t node_block = 4096;  // the node passes' blocks of nodes
+    static constexpr std::size_t max_k = contact::node_view<S>::max_fields;
+
+    // The fields above the cut-off at a node, in field order (at most max_k + 1 written to out);
+    // returns how many there are.
+    static std::size_t fields_at(const grid<S>& grid, real cutoff, std::size_t node, std::uint32_t* out) {
+        const std::size_t nodes = grid.size(), fields_n = grid.field_count();
+        std::size_t k = 0;
+        for (std::size_t f = 0; f < fields_n; ++f)
+            if (grid.mass[f * nodes + node] > cutoff) {
+                if (k <= max_k) out[k] = static_cast<std::uint32_t>(f);
+                ++k;
+            }
+        return k;
+    }
+
+    // Each block of nodes counts its shared nodes, fields and pairs, and marks the nodes shared
+    // (shared_index_ 0) or not (-1); then the blocks' counts become their offsets, in node
+    // order. A node shared by more than max_k fields stops the run (the lowest such node, as a
+    // serial pass would stop at).
+    void count_shared(const grid<S>& grid, real cutoff, std::uint64_t step, double time, int threads, bool parallel) {
+        const std::size_t nodes = grid.size(), fields_n = grid.field_count();
+        const std::size_t blocks = (nodes + node_block - 1) / node_block;
+        shared_index_.resize(nodes);
+        block_count_.assign(blocks, {});
+        const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
+        gimlet::detail::thread_shares count_shares(blocks_n, threads, parallel);
+        GIMLET_OMP(parallel num_threads(count_shares.team()))
+        for (auto claimed = count_shares.start(); count_shares.claim(claimed);)
+            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
+                block_counts& c = block_count_[std::size_t(b)];
+                std::uint32_t ids[max_k + 1];
+                for (std::size_t node = std::size_t(b) * node_block, last = std::min(nodes, node + node_block); node < last;
+                     ++node) {
+                    const std::size_t k = fields_at(grid, cutoff, node, ids);
+                    shared_index_[node] = k < 2 ? -1 : 0;
+                    if (k < 2) continue;
+                    if (k > max_k) {
+                        c.too_many = std::min(c.too_many, node);
+                        continue;
+                    }
+                    ++c.nodes, c.fields += k, c.pairs += k * k;
+                }
+            }
+        block_counts total{};
+        for (block_counts& c : block_count_) {
+            if (c.too_many < nodes) {
+                std::uint32_t ids[max_k + 1];
+                const std::size_t k = fields_at(grid, cutoff, c.too_many, ids);
+                std::string list;
+                for (std::size_t f = 0; f < fields_n; ++f)
+                    if (grid.mass[f * nodes + c.too_many] > cutoff) list += (list.empty() ? "" : ", ") + std::to_string(f);
+                throw numerical_error("gimlet: step " + std::to_string(step) + " (t = " +
+                                      gimlet::detail::to_text(time) + " s): grid node at " +
+                                      gimlet::detail::format_position(grid.node_position(c.too_many)) + " is shared by " +
+                                      std::to_string(k) + " velocity fields (" + list + "); multi-field contact handles at most " +
+                                      std::to_string(max_k) + " at one node");
+            }
+            const block_counts start{total.nodes, total.fields, total.pairs, nodes};
+            total.nodes += c.nodes, total.fields += c.fields, total.pairs += c.pairs;
+            c = start;  // the block's offsets from here on
+        }
+        shared_.resize(total.nodes), shared_field_.resize(total.fields), shared_owner_.resize(total.fields);
+        shared_normal_.resize(total.fields), shared_pair_normal_.resize(total.pairs);
+    }
+
+    // Each block fills its part of the shared nodes' arrays from its offsets: the node, its
+    // fields and their bodies (field / fields_per_body), the normals' sums cleared.
+    void list_shared(const grid<S>& grid, real cutoff, std::size_t fields_per_body, int threads, bool parallel) {
+        const std::size_t nodes = grid.size();
+        const auto blocks_n = static_cast<std::ptrdiff_t>(block_count_.size());
+        gimlet::detail::thread_shares fill_shares(blocks_n, threads, parallel);
+        GIMLET_OMP(parallel num_threads(fill_shares.team()))
+        for (auto claimed = fill_shares.start(); fill_shares.claim(claimed);)
+            for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
+                block_counts at = block_count_[std::size_t(b)];
+                for (std::size_t node = std::size_t(b) * node_block, last = std::min(nodes, node + node_block); node < last;
+                     ++node) {
+                    if (shared_index_[node] < 0) continue;
+                    const std::size_t first = at.fields;
+                    const std::size_t k = fields_at(grid, cutoff, node, shared_field_.data() + first);
+                    shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
+                    shared_[at.nodes] = {node, first, k, at.pairs};
+                    for (std::size_t j = 0; j < k; ++j) {
+                        shared_owner_[first + j] = static_cast<std::uint32_t>(shared_field_[first + j] / fields_per_body);
+                        shared_normal_[first + j] = vector::Zero();  // the mass gradient's sum (sum_mass_gradients)
+                    }
+                    ++at.nodes, at.fields += k, at.pairs += k * k;
+                }
+            }
+    }
+
+    // Each shared field's mass gradient sum_p m_p G_ip, at the shared nodes only (the only place
+    // it is read): summed into shared_normal_ by the particles that reach a shared row, slab by
+    // slab as the scatter visits them, so each node's sum has the scatter's terms in the
+    // scatter's order, whatever the thread count. G is the gradient with respect to the particle
+    // position, so the sum points out of the body (docs/physics.md section 3; Bardenhagen et al.
+    // 2000, eq. 16).
+    template <class Stencils, class Masses, class Entries, class ForEach>
+    void sum_mass_gradients(const grid<S>& grid, const Stencils& stencils, const Masses& mass, const Entries& entries_of,
+                            ForEach& for_each_particle) {
+        const std::size_t nodes = grid.size();
+        for_each_particle(shared_row_, [&](std::size_t i) {
+            auto entry = entries_of(i);
+            const real mp = mass[i];
+            stencils[i].for_each([&](std::size_t node, real, const vector& g) {
+                const std::size_t e = entry(node);  // asked at every node, in order
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0) return;
+                const shared_node& sn = shared_[std::size_t(s)];
+                const std::size_t field = (e - node) / nodes;
+                for (std::size_t a = 0; a < sn.count; ++a)
+                    if (shared_field_[sn.first_field + a] == field) {
+                        shared_normal_[sn.first_field + a] += mp * g;
+                        return;
+                    }  // else below the cut-off at this node
+            });
+        });
+    }
+
+    // The fields' unit normals and each pair's normal, node by node.
+    void normals(int threads, bool parallel) {
+        const auto shared_n = static_cast<std::ptrdiff_t>(shared_.size());
+        gimlet::detail::thread_shares normal_shares(shared_n, threads, parallel && shared_n >= std::ptrdiff_t(node_block));
+        GIMLET_OMP(parallel num_threads(normal_shares.team()))
+        for (auto claimed = normal_shares.start(); normal_shares.claim(claimed);)
+            for (std::ptrdiff_t s = claimed.first, end = claimed.last; s < end; ++s) {
+                const shared_node& sn = shared_[std::size_t(s)];
+                const std::size_t first = sn.first_field, k = sn.count;
+                for (std::size_t j = 0; j < k; ++j) {
+                    const vector g = shared_normal_[first + j];
+                    const real len = g.norm();
+                    shared_normal_[first + j] = len > real(0) ? vector(g / len) : vector::Zero();
+                }
+                // The policies correct along the same n_ab (contact::pair_normal); n_ba = -n_ab.
+                for (std::size_t a = 0; a < k; ++a)
+                    for (std::size_t b2 = 0; b2 < k; ++b2)
+                        shared_pair_normal_[sn.first_pair + a * k + b2] =
+                            a != b2 ? contact::pair_normal(shared_normal_[first + a], shared_normal_[first + b2]) : vector::Zero();
+            }
+    }
+
+    // Each pair's furthest particle centre along its normal (contact::node_view::reach). Particles
+    // of one node are visited by one thread at a time (slab colouring), and a maximum does not
+    // depend on the order: the result is the same for any thread count.
+    template <class Stencils, class Entries, class ForEach>
+    void reaches(const grid<S>& grid, const Stencils& stencils, const Entries& entries_of, ForEach& for_each_particle) {
+        const std::size_t nodes = grid.size();
+        for_each_particle(shared_row_, [&](std::size_t i) {
+            auto entry = entries_of(i);
+            stencils[i].for_each_offset(grid.cell(), [&](std::size_t node, real w, const vector& r) {
+                const std::size_t e = entry(node);  // asked at every node, in order
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0 || !(w > real(0))) return;  // a node the particle does not weigh
+                const std::size_t field = (e - node) / nodes;
+                const shared_node& sn = shared_[std::size_t(s)];
+                std::size_t a = 0;
+                while (a < sn.count && shared_field_[sn.first_field + a] != field) ++a;
+                if (a == sn.count) return;  // below the cut-off at this node
+                for (std::size_t b = 0; b < sn.count; ++b) {
+                    if (b == a) continue;
+                    const std::size_t slot = sn.first_pair + a * sn.count + b;
+                    shared_reach_[slot] = std::max(shared_reach_[slot], r.dot(shared_pair_normal_[slot]));
+                }
+            });
+        });
+    }
+
     // A contact law's counters (contact::Counting), or nothing.
     template <class C>
     static constexpr bool counts() {
