@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace gimlet {
@@ -105,164 +106,26 @@ struct self_contact {
         }
     }
 
-    /// The split nodes of this step (multi_field::Partition's prepare hook).
+    /// The split nodes of this step (multi_field::Partition's prepare hook): the reference
+    /// direction of each node and body (pass 1), the fronts of the surfaces facing along it and
+    /// against it (pass 2), the candidates where a gap lies between them, and those whose gap
+    /// holds no particle of the body (pass 3).
     template <class View>
     void prepare(const View& view) {
-        using store_t = std::remove_cvref_t<decltype(view.particles)>;
-        using S = typename store_t::space_type;
-        using vector = typename S::vector;
-        using matrix = typename S::matrix;
-        using real = typename S::real;
-        constexpr int dim = S::dim;
-        const auto& ps = view.particles;
-        const std::size_t nodes = view.grid.size(), n = ps.size(), entries = view.bodies * nodes;
+        using S = space_of<View>;
+        const std::size_t nodes = view.grid.size(), entries = view.bodies * nodes;
         split_nodes_ = 0;
         if (!enabled) {
             split_.assign(entries, 0);
-            split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
+            split_rows_.assign(std::size_t(view.grid.nodes(S::dim - 1)), 0);
             return;
         }
-        const auto& mass = ps.template column<fields::mass>();
-        const auto& body = ps.template column<fields::body>();
-        const auto& normal0 = ps.template column<fields::surface_normal>();
-        const auto& F = ps.template column<fields::deformation_gradient>();
-        // The current normal: cof(F) n0 (Nanson), scaled back to |n0|. Each particle with a
-        // normal (a > 0) writes its own entries in pass 1 below (which does not read them), and
-        // pass 2 and the reference directions read them. A bulk particle's entries are neither
-        // written nor read: passes 1 and 2 skip it after one test.
-        current_.resize(n * std::size_t(dim));
-        auto current_normal = [&](std::size_t i, real a) {
-            const matrix inv_t = F[i].inverse().transpose();
-            vector c = inv_t * normal0[i];
-            const real len = c.norm();
-            c = len > 0 && std::isfinite(double(len)) ? vector(c * (a / len)) : vector::Zero();
-            for (int d = 0; d < dim; ++d) current_[i * std::size_t(dim) + std::size_t(d)] = double(c[d]);
-        };
-        // |n0| where the particle has a normal, 0 in the bulk: the test needs no square root
-        // (norm() is the root of squaredNorm(), so the two are zero together).
-        auto normal_size = [&](std::size_t i) {
-            const real a2 = normal0[i].squaredNorm();
-            return a2 > 0 ? real(std::sqrt(a2)) : real(0);
-        };
-        auto current = [&](std::size_t i) {
-            vector c;
-            for (int d = 0; d < dim; ++d) c[d] = real(current_[i * std::size_t(dim) + std::size_t(d)]);
-            return c;
-        };
-        constexpr double none = -1;
-        const double inf = std::numeric_limits<double>::infinity();
-        best_.resize(entries), best_particle_.resize(entries);
-        front_along_.resize(entries), front_against_.resize(entries);
-        unit_.resize(entries * std::size_t(dim)), unit_set_.resize(entries);
-        view.for_each_index(entries, [&](std::size_t e) {
-            best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
-            front_along_[e] = -inf, front_against_[e] = inf;
-            unit_set_[e] = 0;
-        });
-        // Pass 1: each particle's current normal, and the reference direction of each node and
-        // body (largest S m |n|, ties to the lower particle index, so the choice does not depend
-        // on the order of the sum).
-        view.for_each_particle_by_slab([&](std::size_t i) {
-            const real a = normal_size(i);
-            if (!(a > 0)) return;
-            current_normal(i, a);
-            const std::size_t base = std::size_t(body[i]) * nodes;
-            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
-                if (!(w > 0)) return;
-                const std::size_t e = base + node;
-                const double key = double(w * mass[i] * a);
-                if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
-            });
-        });
-        // The reference direction e of a node and body, normalised by the first particle of
-        // pass 2 that reaches it (pass 2 reaches every entry pass 1 set, and only those) rather
-        // than at every one: the passes by slab give one thread at a time a particle's nodes.
-        // Pass 3 and the split nodes' planes read it at the candidates, which pass 2 has reached.
-        auto unit = [&](std::size_t e) {
-            vector ref;
-            assert(best_particle_[e] < n);  // pass 1 set it wherever pass 2 asks (finite masses)
-            if (!unit_set_[e]) {
-                ref = current(best_particle_[e]).normalized();
-                for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
-                unit_set_[e] = 1;
-            }
-            for (int d = 0; d < dim; ++d) ref[d] = real(unit_[e * std::size_t(dim) + std::size_t(d)]);
-            return ref;
-        };
-        // Pass 2: the fronts of the particles facing along e and against it. (The nodes'
-        // positions from the stencil, as grid::node_position gives them.)
-        view.for_each_particle_by_slab([&](std::size_t i) {
-            const real a = normal_size(i);
-            if (!(a > 0)) return;
-            const vector c = current(i) / a;
-            const std::size_t base = std::size_t(body[i]) * nodes;
-            const vector x = ps.template column<fields::position>()[i];
-            view.stencils[i].for_each_node_position(view.grid, [&](std::size_t node, real w, const vector& at) {
-                if (!(w > 0)) return;
-                const std::size_t e = base + node;
-                const vector ref = unit(e);
-                const double facing = double(c.dot(ref));
-                const double along = double(view.grid.offset_from(x, at).dot(ref));
-                if (facing > 0.5) front_along_[e] = std::max(front_along_[e], along);
-                if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
-            });
-        });
-        // A node is a candidate where both fronts exist and the surface facing against e lies
-        // beyond the one facing along it: a gap between two faces, not the two faces of a
-        // ligament.
-        split_.resize(entries);
-        std::atomic<bool> candidates{false};
-        view.for_each_index(entries, [&](std::size_t e) {
-            split_[e] = front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e];
-            if (split_[e]) candidates.store(true, std::memory_order_relaxed);
-        });
-        const bool any = candidates.load();
-        // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in
-        // the middle half between the fronts means material there, as just beyond the tip of a
-        // slot, where both faces reach a node of the intact material ahead: no split.
-        if (any) {
-            auto empty_gap = [&](std::size_t i) {
-                const std::size_t base = std::size_t(body[i]) * nodes;
-                const vector x = ps.template column<fields::position>()[i];
-                view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
-                    const std::size_t e = base + node;
-                    if (!(w > 0) || split_[e] != 1) return;
-                    const double quarter = 0.25 * (front_against_[e] - front_along_[e]);
-                    const vector ref = unit(e);
-                    const double along = double(view.grid.offset_from_node(node, x).dot(ref));
-                    if (along > front_along_[e] + quarter && along < front_against_[e] - quarter) split_[e] = 2;
-                });
-            };
-            // Only the particles whose stencils can reach a candidate's row of nodes (of the last
-            // axis) have anything to do here, where the view can skip the others (the solver's
-            // can: partition_view).
-            if constexpr (requires { view.for_each_particle_by_slab(candidate_rows_, empty_gap); }) {
-                flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] == 1; }, candidate_rows_);
-                view.for_each_particle_by_slab(candidate_rows_, empty_gap);
-            } else {
-                view.for_each_particle_by_slab(empty_gap);
-            }
-        }
-        // The split nodes: the candidates left (without a candidate every entry is 0 already).
-        // A split node's plane is its reference direction (unit_) and the midpoint of its fronts,
-        // both kept until the next prepare, where side() reads them.
-        std::atomic<std::size_t> split_count{0};
-        if (any) {
-            view.for_each_index(entries, [&](std::size_t e) {
-                if (split_[e] != 1) split_[e] = 0;
-                else split_count.fetch_add(1, std::memory_order_relaxed);
-            });
-        }
-        split_nodes_ = split_count.load();
-        // The rows of nodes (of the last axis) that hold a split node: the solver asks side()
-        // only of the particles whose stencils can reach one (split_rows()).
-        if (split_nodes_ > 0) flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] != 0; }, split_rows_);
-        else split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
-        nodes_ = nodes;
-        grid_length_.assign(std::size_t(dim), 0.0);
-        for (int d = 0; d < dim; ++d) {
-            grid_length_[std::size_t(d)] = view.grid.periodic(d) ? double(view.grid.spec().upper[d] - view.grid.spec().lower[d]) : 0.0;
-        }
+        reset_entries(view, entries);
+        reference_directions(view);
+        fronts(view);
+        const bool any = find_candidates(view, entries);
+        if (any) empty_gaps(view);
+        count_split(view, entries, any);
     }
 
     /// Field 0 or 1 of the particle's body at `node` (multi_field::Partition).
@@ -300,6 +163,200 @@ struct self_contact {
     [[nodiscard]] bool splits() const noexcept { return split_nodes_ > 0; }
 
 private:
+    template <class View>
+    using space_of = typename std::remove_cvref_t<decltype(std::declval<const View&>().particles)>::space_type;
+    static constexpr double none = -1;  // no reference particle at an entry yet
+    static constexpr double inf = std::numeric_limits<double>::infinity();
+
+    // |n0| where the particle has a normal, 0 in the bulk: the test needs no square root
+    // (norm() is the root of squaredNorm(), so the two are zero together).
+    template <class View>
+    [[nodiscard]] static auto normal_size(const View& view, std::size_t i) {
+        using real = typename space_of<View>::real;
+        const real a2 = view.particles.template column<fields::surface_normal>()[i].squaredNorm();
+        return a2 > 0 ? real(std::sqrt(a2)) : real(0);
+    }
+
+    // The current normal: cof(F) n0 (Nanson), scaled back to |n0| = a, into current_. Each
+    // particle with a normal (a > 0) writes its own entries in pass 1 (which does not read them),
+    // and pass 2 and the reference directions read them. A bulk particle's entries are neither
+    // written nor read: passes 1 and 2 skip it after one test.
+    template <class View>
+    void set_current_normal(const View& view, std::size_t i, typename space_of<View>::real a) {
+        using S = space_of<View>;
+        const auto& F = view.particles.template column<fields::deformation_gradient>();
+        const auto& normal0 = view.particles.template column<fields::surface_normal>();
+        const typename S::matrix inv_t = F[i].inverse().transpose();
+        typename S::vector c = inv_t * normal0[i];
+        const typename S::real len = c.norm();
+        c = len > 0 && std::isfinite(double(len)) ? typename S::vector(c * (a / len)) : S::vector::Zero();
+        for (int d = 0; d < S::dim; ++d) current_[i * std::size_t(S::dim) + std::size_t(d)] = double(c[d]);
+    }
+
+    template <class S>
+    [[nodiscard]] typename S::vector current_normal(std::size_t i) const {
+        typename S::vector c;
+        for (int d = 0; d < S::dim; ++d) c[d] = typename S::real(current_[i * std::size_t(S::dim) + std::size_t(d)]);
+        return c;
+    }
+
+    // The reference direction e of a node and body, normalised by the first particle of pass 2
+    // that reaches it (pass 2 reaches every entry pass 1 set, and only those) rather than at every
+    // one: the passes by slab give one thread at a time a particle's nodes. Pass 3 and the split
+    // nodes' planes read it at the candidates, which pass 2 has reached.
+    template <class S>
+    [[nodiscard]] typename S::vector unit(std::size_t e, [[maybe_unused]] std::size_t n) {
+        constexpr int dim = S::dim;
+        typename S::vector ref;
+        assert(best_particle_[e] < n);  // pass 1 set it wherever pass 2 asks (finite masses)
+        if (!unit_set_[e]) {
+            ref = current_normal<S>(best_particle_[e]).normalized();
+            for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
+            unit_set_[e] = 1;
+        }
+        for (int d = 0; d < dim; ++d) ref[d] = typename S::real(unit_[e * std::size_t(dim) + std::size_t(d)]);
+        return ref;
+    }
+
+    // Every entry without a reference particle, fronts or direction.
+    template <class View>
+    void reset_entries(const View& view, std::size_t entries) {
+        constexpr int dim = space_of<View>::dim;
+        current_.resize(view.particles.size() * std::size_t(dim));
+        best_.resize(entries), best_particle_.resize(entries);
+        front_along_.resize(entries), front_against_.resize(entries);
+        unit_.resize(entries * std::size_t(dim)), unit_set_.resize(entries);
+        view.for_each_index(entries, [&](std::size_t e) {
+            best_[e] = none, best_particle_[e] = std::numeric_limits<std::size_t>::max();
+            front_along_[e] = -inf, front_against_[e] = inf;
+            unit_set_[e] = 0;
+        });
+    }
+
+    // Pass 1: each particle's current normal, and the reference direction of each node and body
+    // (largest S m |n|, ties to the lower particle index, so the choice does not depend on the
+    // order of the sum).
+    template <class View>
+    void reference_directions(const View& view) {
+        using S = space_of<View>;
+        using real = typename S::real;
+        const std::size_t nodes = view.grid.size();
+        const auto& mass = view.particles.template column<fields::mass>();
+        const auto& body = view.particles.template column<fields::body>();
+        view.for_each_particle_by_slab([&](std::size_t i) {
+            const real a = normal_size(view, i);
+            if (!(a > 0)) return;
+            set_current_normal(view, i, a);
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            view.stencils[i].for_each([&](std::size_t node, real w, const typename S::vector&) {
+                if (!(w > 0)) return;
+                const std::size_t e = base + node;
+                const double key = double(w * mass[i] * a);
+                if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
+            });
+        });
+    }
+
+    // Pass 2: the fronts of the particles facing along e and against it. (The nodes' positions
+    // from the stencil, as grid::node_position gives them.)
+    template <class View>
+    void fronts(const View& view) {
+        using S = space_of<View>;
+        using real = typename S::real;
+        using vector = typename S::vector;
+        const std::size_t nodes = view.grid.size(), n = view.particles.size();
+        const auto& body = view.particles.template column<fields::body>();
+        view.for_each_particle_by_slab([&](std::size_t i) {
+            const real a = normal_size(view, i);
+            if (!(a > 0)) return;
+            const vector c = current_normal<S>(i) / a;
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            const vector x = view.particles.template column<fields::position>()[i];
+            view.stencils[i].for_each_node_position(view.grid, [&](std::size_t node, real w, const vector& at) {
+                if (!(w > 0)) return;
+                const std::size_t e = base + node;
+                const vector ref = unit<S>(e, n);
+                const double facing = double(c.dot(ref));
+                const double along = double(view.grid.offset_from(x, at).dot(ref));
+                if (facing > 0.5) front_along_[e] = std::max(front_along_[e], along);
+                if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
+            });
+        });
+    }
+
+    // A node is a candidate where both fronts exist and the surface facing against e lies beyond
+    // the one facing along it: a gap between two faces, not the two faces of a ligament. Whether
+    // there is any.
+    template <class View>
+    bool find_candidates(const View& view, std::size_t entries) {
+        split_.resize(entries);
+        std::atomic<bool> candidates{false};
+        view.for_each_index(entries, [&](std::size_t e) {
+            split_[e] = front_along_[e] > -inf && front_against_[e] < inf && front_against_[e] > front_along_[e];
+            if (split_[e]) candidates.store(true, std::memory_order_relaxed);
+        });
+        return candidates.load();
+    }
+
+    // Pass 3 (only if there is a candidate): a gap is empty. A particle of the body lying in the
+    // middle half between the fronts means material there, as just beyond the tip of a slot,
+    // where both faces reach a node of the intact material ahead: no split (split_ 2).
+    template <class View>
+    void empty_gaps(const View& view) {
+        using S = space_of<View>;
+        using real = typename S::real;
+        using vector = typename S::vector;
+        const std::size_t nodes = view.grid.size(), n = view.particles.size();
+        const auto& body = view.particles.template column<fields::body>();
+        auto empty_gap = [&](std::size_t i) {
+            const std::size_t base = std::size_t(body[i]) * nodes;
+            const vector x = view.particles.template column<fields::position>()[i];
+            view.stencils[i].for_each([&](std::size_t node, real w, const vector&) {
+                const std::size_t e = base + node;
+                if (!(w > 0) || split_[e] != 1) return;
+                const double quarter = 0.25 * (front_against_[e] - front_along_[e]);
+                const vector ref = unit<S>(e, n);
+                const double along = double(view.grid.offset_from_node(node, x).dot(ref));
+                if (along > front_along_[e] + quarter && along < front_against_[e] - quarter) split_[e] = 2;
+            });
+        };
+        // Only the particles whose stencils can reach a candidate's row of nodes (of the last
+        // axis) have anything to do here, where the view can skip the others (the solver's can:
+        // partition_view).
+        if constexpr (requires { view.for_each_particle_by_slab(candidate_rows_, empty_gap); }) {
+            flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] == 1; }, candidate_rows_);
+            view.for_each_particle_by_slab(candidate_rows_, empty_gap);
+        } else {
+            view.for_each_particle_by_slab(empty_gap);
+        }
+    }
+
+    // The split nodes: the candidates left (without a candidate every entry is 0 already). A
+    // split node's plane is its reference direction (unit_) and the midpoint of its fronts, both
+    // kept until the next prepare, where side() reads them. The rows of nodes (of the last axis)
+    // that hold a split node: the solver asks side() only of the particles whose stencils can
+    // reach one (split_rows()).
+    template <class View>
+    void count_split(const View& view, std::size_t entries, bool any) {
+        constexpr int dim = space_of<View>::dim;
+        const std::size_t nodes = view.grid.size();
+        std::atomic<std::size_t> split_count{0};
+        if (any) {
+            view.for_each_index(entries, [&](std::size_t e) {
+                if (split_[e] != 1) split_[e] = 0;
+                else split_count.fetch_add(1, std::memory_order_relaxed);
+            });
+        }
+        split_nodes_ = split_count.load();
+        if (split_nodes_ > 0) flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] != 0; }, split_rows_);
+        else split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
+        nodes_ = nodes;
+        grid_length_.assign(std::size_t(dim), 0.0);
+        for (int d = 0; d < dim; ++d) {
+            grid_length_[std::size_t(d)] = view.grid.periodic(d) ? double(view.grid.spec().upper[d] - view.grid.spec().lower[d]) : 0.0;
+        }
+    }
+
     // rows[r] = whether some body's entry at a node of row r (grid::layer, the last axis) has
     // flagged(entry): the nodes of a row are a run of stride(dim - 1) consecutive indices, so
     // the rows are read in order, without a division per entry.
