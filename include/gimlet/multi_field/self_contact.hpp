@@ -135,8 +135,8 @@ struct self_contact {
         if (e >= split_.size() || !split_[e]) return 0;
         const auto& x = p.template get<fields::position>();
         // The particle's space's dimension (what prepare used), not a member set at run time: the
-        // loop cannot read past node_position (g++ 12 with AVX-512 warned that it might, and
-        // -Werror stopped the build).
+        // compiler then sees that the loop cannot read past node_position (g++ 12 with AVX-512
+        // warns otherwise).
         constexpr int dims = P::space_type::dim;
         double along = 0;
         for (int d = 0; d < dims; ++d) {
@@ -333,9 +333,9 @@ private:
 
     // The split nodes: the candidates left (without a candidate every entry is 0 already). A
     // split node's plane is its reference direction (unit_) and the midpoint of its fronts, both
-    // kept until the next prepare, where side() reads them. The rows of nodes (of the last axis)
-    // that hold a split node: the solver asks side() only of the particles whose stencils can
-    // reach one (split_rows()).
+    // kept until the next prepare, where side() reads them, with the grid's node count and
+    // periodic lengths stored here. The rows of nodes (of the last axis) that hold a split node:
+    // the solver asks side() only of the particles whose stencils can reach one (split_rows()).
     template <class View>
     void count_split(const View& view, std::size_t entries, bool any) {
         constexpr int dim = space_of<View>::dim;

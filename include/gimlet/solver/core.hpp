@@ -99,7 +99,7 @@ public:
     static_assert(fields_per_body <= 255, "gimlet::solver: a partition may have at most 255 fields per body");
 
 private:
-    // Only gimlet::solver builds, copies, destroys and reaches into a core: what was private in
+    // Only gimlet::solver builds, copies, destroys and reaches into a core: what is private to
     // the solver stays private, and a core is never a solver without its contact policy.
     template <Space, shape::Shape, Material, contact::Contact, FieldList, multi_field::Partition>
     friend class solver;
@@ -234,7 +234,6 @@ private:
         }
     }
 
-
     // ---- the step's stages ---------------------------------------------------------------
     //
     // gimlet::solver's schemes (solver/solver.hpp) call these in their order, each timed by the
@@ -247,8 +246,8 @@ private:
     // in the unfused order; only the order in which a node sums its particles' contributions is
     // the scatter's (see for_each_particle_by_slab).
     //
-    // The stages the schemes call are defined below the class, in transfers.hpp and in
-    // particle_passes.hpp, not inline: an explicit instantiation of the core compiles them, and
+    // The stages the schemes call are defined below the class (here, in transfers.hpp and in
+    // particle_passes.hpp), not inline: an explicit instantiation of the core compiles them, and
     // an `extern template` declaration keeps them out of a unit that runs a solver of another
     // contact law on a shared core (its schemes are compiled there; docs/performance.md, "Memory,
     // the largest scene, compile time").
@@ -285,7 +284,6 @@ private:
         slabs_.assign(i, st.first_row);
     }
 
-    // f(i) for every particle, slab by slab and colour by colour (detail::slab_schedule): every
     // Whether this step sorts the particles by cell first (solver_options::sort_interval).
     [[nodiscard]] bool sort_due() const noexcept {
         return options_.sort_interval > 0 && steps_ % std::uint64_t(options_.sort_interval) == 0;
@@ -293,9 +291,9 @@ private:
     // The particles into the scatter's slabs, the partition's preparation and the step's fields
     // (stages::field_choice).
     void group_into_slabs();
-    // An empty grid for a step of `dt` (with volumetric averaging, the cells' mean stresses for
-    // the step's first force map).
-    void start_grid(real dt);
+    // An empty grid (with volumetric averaging, the cells' mean stresses for the step's first
+    // force map).
+    void start_grid();
     // The stages' own: the light particles (stages::light_particles) after the first scatter,
     // the nodes several fields share (multi_field::exchange) for the contact passes.
     void find_light_particles();
@@ -406,7 +404,12 @@ private:
     [[nodiscard]] partition_view_type<Store> partition_view() {
         return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}, index_caller{this}};
     }
-
+    // Whether the partition has the optional prepare hook, asked each step (stages::field_choice;
+    // multi_field::check, above, refuses one in a form this would miss). The view is a const
+    // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
+    static constexpr bool partition_prepares = requires(Part& p, const partition_view_type<const store_type>& v) {
+        p.prepare(v);
+    };
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
@@ -473,7 +476,6 @@ private:
     stages::volumetric_average<S> volumetric_average_;
 
     // The step's own state: the clock, the counters, the checks between steps.
-    real dt_ = 0;  // the step's size, for the contact passes
     real time_ = 0;
     std::uint64_t steps_ = 0;
     step_timings timings_;
@@ -554,8 +556,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::group_into_slabs() {
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::start_grid(real dt) {
-    dt_ = dt;
+void solver_core<S, Sh, M, Fields, MultiField, Part>::start_grid() {
     if (options_.volumetric_average) average_mean_stress();
     clear_grid();
 }
@@ -607,7 +608,6 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils() {
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
         for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) compute_stencil(static_cast<std::size_t>(i));
-
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

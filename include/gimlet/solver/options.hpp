@@ -132,6 +132,9 @@ struct solver_options {
 
 /// Where the wall-clock time of a solver's steps went (s, summed over its steps): see
 /// solver::timings(). Fused loops are counted where they end up.
+///
+/// Each phase sums the time of the stages the scheme times into it (solver/solver.hpp); the
+/// moments between two stages are in none.
 struct step_timings {
     double sort = 0;               ///< sorting particles by cell (solver_options::sort_interval)
     double particle_to_grid = 0;   ///< weights, slabs, clearing the grid, P2G of mass, momentum, forces (and mass gradients, reach)

@@ -115,20 +115,20 @@ private:
     // update's pairs), and the stress from the re-mapped velocities.
     void musl_step(real dt) {
         auto& t = this->timings_;
-        begin_step(dt);
+        begin_step();
         grid_update_and_contact(dt);
         core::timed(t.grid_to_particle, [&] {
             this->grid_to_particles(dt, true);  // with the re-map's scatter
             this->remapped_velocities();
         });
-        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::remap); });
+        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::remap, dt); });
         end_step(dt, true);
     }
 
     // USL: P2G, grid update, contact, G2P, and the stress from the updated grid velocities.
     void usl_step(real dt) {
         auto& t = this->timings_;
-        begin_step(dt);
+        begin_step();
         grid_update_and_contact(dt);
         core::timed(t.grid_to_particle, [&] { this->grid_to_particles(dt, false); });
         end_step(dt, true);
@@ -139,13 +139,13 @@ private:
     // then its forces, grid update, contact and G2P.
     void usf_step(real dt) {
         auto& t = this->timings_;
-        begin_step(dt);
+        begin_step();
         core::timed(t.particle_to_grid, [&] { scatter_and_search(true); });
         core::timed(t.grid_update, [&] { this->start_of_step_velocities(); });
         // The stress sees the same contact as the momentum update, or it would strain the
         // bodies through each other: this pass decides where contact acts in this step.
         core::timed(t.contact, [&] {
-            resolve_contact(multi_field::pass::trial);
+            resolve_contact(multi_field::pass::trial, dt);
             if constexpr (C::multi_field) this->clear_forces();
         });
         core::timed(t.material_update, [&] { update_stress(dt); });
@@ -158,7 +158,7 @@ private:
         // engaging one the stress saw free, makes the forces work on other velocities than the
         // ones that strained the material (an energy source: Bardenhagen contact from a gap
         // rebounded with 1.8x the energy it came in with).
-        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::keep); });
+        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::keep, dt); });
         core::timed(t.grid_to_particle, [&] { this->grid_to_particles(dt, false); });
         end_step(dt, false);
     }
@@ -168,7 +168,7 @@ private:
     // What every scheme does first: the checks of what changed between steps, the weights at
     // x^n, the particles sorted by cell when due, the slabs of the scatter and the step's
     // fields, an empty grid.
-    void begin_step(real dt) {
+    void begin_step() {
         auto& t = this->timings_;
         core::timed(t.material_update, [&] { this->check_step_start(); });  // where the checks are in every other step
         // The weights are recomputed from the positions every step, even though the previous
@@ -179,7 +179,7 @@ private:
             if (this->sort_due()) this->sort_by_cell();
         });
         core::timed(t.particle_to_grid, [&] { this->group_into_slabs(); }, &t.slabs);
-        core::timed(t.particle_to_grid, [&] { this->start_grid(dt); });
+        core::timed(t.particle_to_grid, [&] { this->start_grid(); });
     }
 
     // P2G of mass, momentum and forces (USF's first: its forces only with contact), then the
@@ -198,7 +198,7 @@ private:
         auto& t = this->timings_;
         core::timed(t.particle_to_grid, [&] { scatter_and_search(false); });
         core::timed(t.grid_update, [&] { this->update_grid_momentum(dt, true); });
-        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::decide); });
+        core::timed(t.contact, [&] { resolve_contact(multi_field::pass::decide, dt); });
     }
 
     // The stress update from the grid velocities (USF's, before its forces): the volume filter
@@ -224,10 +224,10 @@ private:
 
     // At every node several fields share, the policy's correction (multi_field::exchange); nothing
     // with single-field contact.
-    void resolve_contact(multi_field::pass pass) {
+    void resolve_contact(multi_field::pass pass, real dt) {
         if constexpr (C::multi_field)
-            this->exchange_.resolve(pass, this->grid_, contact_, this->dt_, this->mass_cutoff_);
-        else (void)pass;
+            this->exchange_.resolve(pass, this->grid_, contact_, dt, this->mass_cutoff_);
+        else (void)pass, (void)dt;
     }
 
     // A contact policy's per-particle hook (contact::ParticleHook), after the step's last

@@ -102,7 +102,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::fill_entries(std::vector<v
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <class F>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f) {
-    const std::size_t nodes = grid_.size(), swept = fields_.swept();
+    const std::size_t nodes = grid_.size(), swept = swept_fields();
     if (swept == fields_per_body) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);

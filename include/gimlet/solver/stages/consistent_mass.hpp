@@ -45,11 +45,12 @@ namespace gimlet::stages {
 /// The consistent-mass stage, called by the grid momentum update of every scheme before the
 /// forces are applied.
 ///
-/// Reads: the grid's masses and forces, the walls' free components, the shared nodes of
-/// multi-field contact, the particles' masses, the step's stencils and node entries. Writes: the
-/// grid's forces, and the step's list of each particle's node entries (list), which the step's
-/// later transfers read instead of choosing them again. Chosen at run time
-/// (solver_options::consistent_mass_iterations; 0, the default for USL, returns at once).
+/// Reads: the grid's masses and forces, the mass cut-off, the walls' free components, the swept
+/// field slots, the shared nodes of multi-field contact, the particles' masses, the step's
+/// stencils and node entries. Writes: the grid's forces, and the step's list of each particle's
+/// node entries (list), which the step's later transfers read instead of choosing them again.
+/// Chosen at run time (solver_options::consistent_mass_iterations; 0, the default and the only
+/// value USL takes, returns at once).
 ///
 /// \tparam S the space.
 /// \tparam Nodes the nodes of a particle's stencil.
@@ -167,14 +168,14 @@ private:
     void multiply_listing(Core& c) {
         c.for_each_particle_by_slab([&](std::size_t i) {
             auto at = c.entries(i);
-            std::uint32_t* list = &entry_[i * Nodes];
+            std::uint32_t* out = &entry_[i * Nodes];
             vector ap = vector::Zero();
             real heavy = 0;     // the particle's weight on nodes above the mass cut-off
             bool held = false;  // whether it reaches a shared node's entry
             bool all_heavy = true;
             c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t e = at(node);
-                *list++ = static_cast<std::uint32_t>(e);
+                *out++ = static_cast<std::uint32_t>(e);
                 ap += w * accel_[e];
                 if (c.grid_.mass[e] > c.mass_cutoff_) heavy += w;
                 else all_heavy = false;
@@ -193,8 +194,8 @@ private:
         c.for_each_particle_by_slab([&](std::size_t i) {
             vector ap = vector::Zero();
             if (kind_[i] != kind_held) {
-                const std::uint32_t* list = &entry_[i * Nodes];
-                c.stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * accel_[*list++]; });
+                const std::uint32_t* listed = &entry_[i * Nodes];
+                c.stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * accel_[*listed++]; });
             }
             scatter_listed(c, i, ap);
         });
@@ -204,7 +205,7 @@ private:
     template <class Core>
     void scatter_listed(Core& c, std::size_t i, const vector& ap) {
         const auto& mass = c.particles_.template column<fields::mass>();
-        const std::uint32_t* list = &entry_[i * Nodes];
+        const std::uint32_t* listed = &entry_[i * Nodes];
         const auto& st = c.stencils_[i];
         const real heavy = heavy_[i];
         if (kind_[i] == kind_held) {
@@ -212,7 +213,7 @@ private:
             // (M's diagonal): no entry of its stencil is coupled to another through it. (No
             // entry is shared in a single-field solver.)
             st.for_each([&](std::size_t, real w, const vector&) {
-                const std::size_t e = *list++;
+                const std::size_t e = *listed++;
                 if (c.grid_.mass[e] > c.mass_cutoff_) product_[e] += vector(w * mass[i] * accel_[e]);
             });
             return;
@@ -221,10 +222,10 @@ private:
         // such node); only a particle that reaches a light node tests the nodes' masses.
         const vector share = heavy > 0 ? vector(mass[i] * ap / heavy) : vector::Zero();
         if (kind_[i] == kind_all_heavy) {
-            st.for_each([&](std::size_t, real w, const vector&) { product_[*list++] += vector(w * share); });
+            st.for_each([&](std::size_t, real w, const vector&) { product_[*listed++] += vector(w * share); });
         } else {
             st.for_each([&](std::size_t, real w, const vector&) {
-                const std::size_t e = *list++;
+                const std::size_t e = *listed++;
                 if (c.grid_.mass[e] > c.mass_cutoff_) product_[e] += vector(w * share);
             });
         }

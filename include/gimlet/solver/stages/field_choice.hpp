@@ -54,11 +54,9 @@ public:
     void prepare(Core& c) {
         using Part = typename Core::partition_type;
         using store_type = typename Core::store_type;
-        // Asked of any partition that has it, whatever its fields_per_body; the view is a const
-        // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
-        if constexpr (requires(Part& p, const typename Core::template partition_view_type<const store_type>& v) {
-                          p.prepare(v);
-                      }) {
+        // Asked of any partition that has it, whatever its fields_per_body (the core tells:
+        // Core::partition_prepares).
+        if constexpr (Core::partition_prepares) {
             const auto view = c.template partition_view<const store_type>();
             c.partition_.prepare(view);
         }
@@ -107,9 +105,9 @@ private:
             bool ok = true;
             stencils[i].for_each_node_position(grid, [&](std::size_t node, real, const vector& at) {
                 assert(at == grid.node_position(node));
-                const std::size_t side = c.partition_.side(std::as_const(p), node, at);
-                ok = ok && side < FieldsPerBody;
-                sides_[i][j++] = static_cast<std::uint8_t>(ok ? side : 0);
+                const std::size_t chosen = c.partition_.side(std::as_const(p), node, at);
+                ok = ok && chosen < FieldsPerBody;
+                sides_[i][j++] = static_cast<std::uint8_t>(ok ? chosen : 0);
             });
             return ok;
         };

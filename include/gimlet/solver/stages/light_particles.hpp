@@ -29,10 +29,13 @@
 namespace gimlet::stages {
 
 /// The light-particles stage. Called by every scheme after its first scatter (find), by G2P
-/// before its pass (move) and by the velocity gradient (velocity_gradient).
+/// before its pass (move), and by the velocity gradient and volumetric averaging (is_light,
+/// velocity_gradient).
 ///
-/// Reads: the particles' mass, volume0 and current volume, the step's stencils and node
-/// entries, the grid's mass and velocities, the options' light_particle_ratio and pic_fraction.
+/// Reads: the particles' mass, volume0, current volume, body and velocity, the number of bodies,
+/// the step's stencils and node entries, the grid's mass and velocities, the light nodes' forces
+/// (Core::on_light_node, Core::light_node_change), the options' light_particle_ratio and
+/// pic_fraction.
 /// Writes: the light particles' position and velocity (move); its own per-node and
 /// per-particle state, read by G2P (heavy_mass, momentum) and the velocity gradient.
 /// Chosen at run time (solver_options::light_particle_ratio, and whether any particle can be

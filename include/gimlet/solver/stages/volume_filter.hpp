@@ -57,9 +57,9 @@ namespace gimlet::stages {
 /// The volume-filter stage, called before every material update (before the cell averages of
 /// volumetric averaging, which weight the rates with the volumes).
 ///
-/// Reads: the grid's masses, the particles' masses, bodies, stencils and node entries, and the
-/// materials' reference isentropes. Writes: the particles' deformation gradients and internal
-/// energies. Chosen at run time (solver_options::volume_filter; off, it returns at once) and
+/// Reads: the grid's masses, the mass cut-off, consistent_mass_iterations, the particles'
+/// masses, bodies, deformation gradients, stencils and node entries, and the materials'
+/// reference isentropes. Writes: the particles' deformation gradients and internal energies. Chosen at run time (solver_options::volume_filter; off, it returns at once) and
 /// compiled only for a material whose thermal policy provides the reference isentrope.
 ///
 /// \tparam S the space.

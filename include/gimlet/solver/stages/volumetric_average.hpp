@@ -18,9 +18,9 @@ namespace gimlet::stages {
 /// and average_stress before each force map; the velocity gradient and the force map read the
 /// cell means through averaged_rate and averaged_stress.
 ///
-/// Reads: the particles' stresses, volumes, bodies and stencils, the step's node entries and
-/// fields (Core::field_of), the grid velocities given, and the light-particles stage's
-/// gradients. Writes: its own cell sums only. Chosen at run time
+/// Reads: the particles' stresses, volumes, bodies and stencils, the number of bodies, the
+/// step's node entries and fields (stages::field_choice::side), the grid velocities given, and
+/// the light-particles stage's gradients. Writes: its own cell sums only. Chosen at run time
 /// (solver_options::volumetric_average); off, the schemes do not call it.
 ///
 /// \tparam S the space.
