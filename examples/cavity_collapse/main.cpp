@@ -30,6 +30,8 @@
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "cavity_collapse/flags.hpp"
 #include "common/cli.hpp"
+#include "common/plotter.hpp"
+#include "common/restart.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -55,6 +57,9 @@
 namespace {
 
 using namespace cavity_collapse;
+using example::keep_lines;
+using example::plotter;
+using example::shell_word;
 
 void write_header(std::ostream& os) {
     os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,max_eta,"
@@ -160,65 +165,6 @@ struct listed_times {
 template <class F>
 listed_times(std::vector<double>, std::size_t, F) -> listed_times<F>;
 
-// A word for the shell, single-quoted: any path, whatever its characters.
-std::string shell_word(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-// The figures drawn while the run goes on: `plot.py --follow` reads each snapshot's index and
-// time as its map is written and draws the map from processor time the run leaves idle, and
-// draws the rest when the run ends (the line `end`; its input closed without it, by a run that
-// threw or was killed, it draws nothing more). Drawn after the run, the figures took 12 % of
-// the quickstart's run with outputs off (docs/performance.md, "The flagship's outputs").
-class plotter {
-public:
-    // command: the plotter's, its errors sent to log (removed at the end if empty).
-    plotter(const std::string& command, std::filesystem::path log) : log_(std::move(log)) {
-        // A plotter that cannot start (no python3, no matplotlib) exits; writing to its pipe
-        // then fails with EPIPE rather than stopping the run with SIGPIPE. (For the whole
-        // process: with its standard output piped into a program that exits early, the run now
-        // goes on to its end and writes its files.)
-        std::signal(SIGPIPE, SIG_IGN);
-        pipe_ = popen((command + " 2>" + shell_word(log_.string())).c_str(), "w");
-        failed_ = pipe_ == nullptr;
-    }
-    plotter(const plotter&) = delete;
-    plotter& operator=(const plotter&) = delete;
-    // Left without finish() (the run threw): the input closed without `end`, the plotter stops.
-    ~plotter() {
-        if (pipe_) pclose(pipe_), drop_empty_log();
-    }
-    // A map written: its index and time after contact (the values snapshots/times.csv holds),
-    // and whether it is the run's last.
-    void map(std::size_t index, double after_contact_us, bool last) {
-        if (pipe_ && (std::fprintf(pipe_, "%zu %.17g%s\n", index, after_contact_us, last ? " last" : "") < 0 ||
-                      std::fflush(pipe_) != 0))
-            failed_ = true;
-    }
-    // The run has ended and its files are closed: waits for the figures; true if every one was
-    // drawn.
-    bool finish() {
-        if (!pipe_) return !failed_;
-        if (std::fputs("end\n", pipe_) < 0) failed_ = true;
-        const int status = pclose(pipe_);
-        pipe_ = nullptr;
-        failed_ = failed_ || status != 0;
-        drop_empty_log();
-        return !failed_;
-    }
-
-private:
-    void drop_empty_log() const {
-        std::error_code ec;
-        if (std::filesystem::file_size(log_, ec) == 0 && !ec) std::filesystem::remove(log_, ec);
-    }
-    std::filesystem::path log_;
-    FILE* pipe_ = nullptr;
-    bool failed_ = false;
-};
-
 // Where a run writes, and whether it checkpoints or resumes.
 struct run_files {
     std::filesystem::path out;
@@ -228,21 +174,6 @@ struct run_files {
     bool quiet = false;
     plotter* figures = nullptr;  // none: no figures
 };
-
-// Keeps the first `keep` lines of a text file (a header counts as one) and drops the rest: a
-// resumed run rewrites what the interrupted one wrote after its checkpoint.
-void keep_lines(const std::filesystem::path& file, std::size_t keep) {
-    std::ifstream in(file);
-    if (!in)
-        throw std::runtime_error("cannot read " + file.string() +
-                                 " to continue it after a restart: --output must name the folder of the run that "
-                                 "wrote the checkpoint (it holds series.csv and snapshots/), not a fresh one");
-    std::string text, line;
-    for (std::size_t n = 0; n < keep && std::getline(in, line); ++n) text += line + '\n';
-    in.close();
-    std::ofstream os(file, std::ios::trunc);
-    if (!(os << text)) throw std::runtime_error("cannot rewrite " + file.string());
-}
 
 double value_of(const gimlet::io::checkpoint_values& v, const std::string& key, const std::filesystem::path& file) {
     const auto it = v.find(key);
@@ -262,6 +193,86 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0},
             {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0}};
+}
+
+// summary.csv: the run's settings, its peaks and times, the health events and how it ended.
+template <class Solver>
+void write_summary(const std::filesystem::path& file, const settings& s, const Solver& sol, const summary& sum,
+                   const monitor& mon, double wall, const std::string& status) {
+    std::ofstream su(file);
+    gimlet::io::exact_numbers(su);
+    su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
+          "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
+          "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
+          "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
+          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
+          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter";
+    for (double dt : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
+    for (const char* name : gimlet::health_events::names) su << ",events_" << name;
+    su << ",status\n";
+    auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
+    su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
+       << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
+       << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
+       << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_upstream_speed << ',' << sum.max_hot_spot << ','
+       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
+       << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
+       << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
+       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
+       << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
+       << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
+       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off");
+    for (double m : sum.max_hot_mass) su << ',' << m;
+    for (const auto n : sol.health().count) su << ',' << n;
+    su << ',' << status << '\n';
+    su.close();
+    if (!su) throw std::runtime_error("could not write " + file.string());
+
+}
+
+// The run's report on standard output: where the time went and the summary's main figures.
+template <class Solver>
+void print_report(const settings& s, const Solver& sol, const summary& sum, const monitor& mon, double wall) {
+    // Where the time went: the solver's phases (solver::timings()), and the rest of the run
+    // (the time step's choice, the observers, the files), which scales differently with threads.
+    const auto& ph = sol.timings();
+    std::printf("  %llu steps in %.1f s: steps %.2f s (P2G %.2f, grid %.2f, contact %.2f, G2P %.2f, material %.2f), "
+                "time steps, observers and files %.2f s\n",
+                static_cast<unsigned long long>(sol.steps()), wall, ph.total(), ph.particle_to_grid + ph.sort,
+                ph.grid_update, ph.contact, ph.grid_to_particle, ph.material_update, wall - ph.total());
+    // A time or value the run never reached reads "none" here (summary.csv keeps -1 there).
+    auto at_us = [](double t, const char* fmt) {
+        char text[64] = "none";
+        if (t >= 0) std::snprintf(text, sizeof text, fmt, t * 1e6);
+        return std::string(text);
+    };
+    auto kelvin = [](double t) {
+        char text[64] = "none";
+        if (t >= 0) std::snprintf(text, sizeof text, "%.1f K", t);
+        return std::string(text);
+    };
+    std::printf("  D_max %.3f mm at %s; secondary impact at %s\n", sum.D_max * 1e3, at_us(sum.t_D_max, "%.2f us").c_str(),
+                at_us(sum.secondary_impact, "%.2f us").c_str());
+    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after it %s, at the end "
+                "%.1f K (hottest particle %.1f K)\n",
+                sum.max_wall_relative_velocity, sum.max_hot_spot, kelvin(sum.settled_hot_spot).c_str(),
+                sum.final_hot_spot, sum.max_temperature);
+    std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
+    std::printf("  hot material, largest mass above T_EP = %.1f K plus", mon.bulk_shock_temperature());
+    for (std::size_t k = 0; k < hot_levels; ++k)
+        std::printf("%s %.0f K: %.3g g/m", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3);
+    std::printf("\n");
+    // The silent numerical guards that acted (solver::health): counts, and the first of each.
+    std::printf("  health events: %llu\n", static_cast<unsigned long long>(sol.health().total()));
+    for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
+        if (sol.health().count[k] > 0)
+            std::printf("    %s: %llu, first %s\n", gimlet::health_events::names[k],
+                        static_cast<unsigned long long>(sol.health().count[k]), sol.health().first[k].c_str());
+    if (s.radius > 0)
+        for (int b = 0; b < 2; ++b)
+            std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",
+                        sum.collapse[b] < 0 ? "not collapsed (axial chord above R)"
+                                            : (sum.asymmetric[b] ? "collapsed asymmetrically (jet)" : "collapsed evenly"));
 }
 
 template <class Contact>
@@ -427,75 +438,8 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     times.close();
     if (!series || !times) throw std::runtime_error("could not write the series in " + out.string());
 
-    std::ofstream su(out / "summary.csv");
-    gimlet::io::exact_numbers(su);
-    su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
-          "D_max_mm,t_D_max_us,secondary_impact_us,max_wall_relative_velocity_m_s,max_upstream_wall_speed_m_s,max_hotspot_temperature_K,"
-          "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
-          "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
-          "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
-          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter";
-    for (double dt : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
-    for (const char* name : gimlet::health_events::names) su << ",events_" << name;
-    su << ",status\n";
-    auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
-    su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
-       << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
-       << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
-       << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_upstream_speed << ',' << sum.max_hot_spot << ','
-       << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
-       << sum.max_eta << ',' << us(sum.closure[0]) << ',' << int(sum.asymmetric[0]) << ',' << us(sum.closure[1]) << ','
-       << int(sum.asymmetric[1]) << ',' << us(sum.collapse[0]) << ',' << us(sum.collapse[1]) << ',' << sum.aspect[0] << ','
-       << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
-       << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
-       << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
-       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off");
-    for (double m : sum.max_hot_mass) su << ',' << m;
-    for (const auto n : sol.health().count) su << ',' << n;
-    su << ',' << status << '\n';
-    su.close();
-    if (!su) throw std::runtime_error("could not write " + (out / "summary.csv").string());
-
-    // Where the time went: the solver's phases (solver::timings()), and the rest of the run
-    // (the time step's choice, the observers, the files), which scales differently with threads.
-    const auto& ph = sol.timings();
-    std::printf("  %llu steps in %.1f s: steps %.2f s (P2G %.2f, grid %.2f, contact %.2f, G2P %.2f, material %.2f), "
-                "time steps, observers and files %.2f s\n",
-                static_cast<unsigned long long>(sol.steps()), wall, ph.total(), ph.particle_to_grid + ph.sort,
-                ph.grid_update, ph.contact, ph.grid_to_particle, ph.material_update, wall - ph.total());
-    // A time or value the run never reached reads "none" here (summary.csv keeps -1 there).
-    auto at_us = [](double t, const char* fmt) {
-        char text[64] = "none";
-        if (t >= 0) std::snprintf(text, sizeof text, fmt, t * 1e6);
-        return std::string(text);
-    };
-    auto kelvin = [](double t) {
-        char text[64] = "none";
-        if (t >= 0) std::snprintf(text, sizeof text, "%.1f K", t);
-        return std::string(text);
-    };
-    std::printf("  D_max %.3f mm at %s; secondary impact at %s\n", sum.D_max * 1e3, at_us(sum.t_D_max, "%.2f us").c_str(),
-                at_us(sum.secondary_impact, "%.2f us").c_str());
-    std::printf("  max relative wall velocity %.0f m/s; hot spot: peak %.1f K, 5 us after it %s, at the end "
-                "%.1f K (hottest particle %.1f K)\n",
-                sum.max_wall_relative_velocity, sum.max_hot_spot, kelvin(sum.settled_hot_spot).c_str(),
-                sum.final_hot_spot, sum.max_temperature);
-    std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
-    std::printf("  hot material, largest mass above T_EP = %.1f K plus", mon.bulk_shock_temperature());
-    for (std::size_t k = 0; k < hot_levels; ++k)
-        std::printf("%s %.0f K: %.3g g/m", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3);
-    std::printf("\n");
-    // The silent numerical guards that acted (solver::health): counts, and the first of each.
-    std::printf("  health events: %llu\n", static_cast<unsigned long long>(sol.health().total()));
-    for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
-        if (sol.health().count[k] > 0)
-            std::printf("    %s: %llu, first %s\n", gimlet::health_events::names[k],
-                        static_cast<unsigned long long>(sol.health().count[k]), sol.health().first[k].c_str());
-    if (s.radius > 0)
-        for (int b = 0; b < 2; ++b)
-            std::printf("  %s cavity: %s\n", b == 0 ? "lower" : "upper",
-                        sum.collapse[b] < 0 ? "not collapsed (axial chord above R)"
-                                            : (sum.asymmetric[b] ? "collapsed asymmetrically (jet)" : "collapsed evenly"));
+    write_summary(out / "summary.csv", s, sol, sum, mon, wall, status);
+    print_report(s, sol, sum, mon, wall);
     return status == "completed" ? 0 : 3;
 }
 
