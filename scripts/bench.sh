@@ -9,7 +9,7 @@
 # Markdown tables go to results/bench/, plots to docs/perf_*.png (drawn with Debian's
 # /usr/bin/python3, which has matplotlib).
 #
-#   scripts/bench.sh            the full run (20-40 minutes on a 2-core machine; 21 minutes in the thirteenth session)
+#   scripts/bench.sh            the full run (20-40 minutes on a 2-core machine)
 #   scripts/bench.sh --quick    a smoke run of every benchmark (a minute)
 #
 # The machine's load average is recorded before and after each benchmark: timings on a busy
