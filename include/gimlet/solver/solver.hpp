@@ -201,11 +201,16 @@ private:
         core::timed(t.contact, [&] { resolve_contact(multi_field::pass::decide, dt); });
     }
 
-    // The stress update from the grid velocities (USF's, before its forces): the volume filter
-    // and the cells' mean rates first (they weight the rates with the volumes).
-    void update_stress(real dt) {
+    // What comes before every stress update: the volume filter, then the cells' mean rates
+    // (they weight the rates with the volumes).
+    void before_stress() {
         this->filter_volumes();
         if (this->options_.volumetric_average) this->average_volumetric_rates();
+    }
+
+    // The stress update from the grid velocities (USF's, before its forces).
+    void update_stress(real dt) {
+        before_stress();
         this->update_material_points(dt);
     }
 
@@ -214,8 +219,7 @@ private:
     void end_step(real dt, bool update_materials) {
         core::timed(this->timings_.material_update, [&] {
             contact_hook();
-            if (update_materials) this->filter_volumes();
-            if (update_materials && this->options_.volumetric_average) this->average_volumetric_rates();
+            if (update_materials) before_stress();
             this->finish_step(dt, update_materials);
         });
     }
