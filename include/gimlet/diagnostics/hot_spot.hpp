@@ -18,6 +18,7 @@
 #include <exception>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,545 @@ struct hot_spot_workspace {
     std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_ring;
     std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
 };
+
+namespace detail {
+
+/// One hot_spot call (see hot_spot below for what it finds). Its passes over the particles, in
+/// the order run() calls them:
+///  - binning: the particles' box and hottest particle (find_extent), the bins of side `radius`
+///    and which of them can hold a sought disc (choose_bins; with no `above`, find_floor and
+///    mark_hot_bins narrow them), and a counting sort of the kept particles by bin
+///    (sort_into_bins);
+///  - the candidate search: every kept centre whose bins could hold the hottest disc
+///    (search_centres);
+///  - the disc sums: one centre's mean temperature (disc), summed relative to its bins' hottest
+///    particle (bound_at).
+/// Each pass gives what the serial pass gives (a minimum, a maximum, a stable order), so
+/// nothing depends on the thread count. The members are shared by the threads of run()'s one
+/// region; a pass's own scratch is local to it.
+template <class Solver>
+class hot_spot_search {
+public:
+    static constexpr int dim = Solver::dim;
+    using vector = typename Solver::vector;
+
+    hot_spot_search(const Solver& s, double radius, double above, hot_spot_workspace<vector>& work)
+        : x_(s.particles().template column<fields::position>()),
+          m_(s.particles().template column<fields::mass>()),
+          T_(s.particles().template column<fields::temperature>()),
+          n_(s.particles().size()),
+          radius_(radius),
+          r2_(radius * radius),
+          // The discs sought are hotter than this (NaN and +infinity ignored, as documented).
+          // With one (a tracked peak), the bins kept are found from the box of the particles
+          // hotter than it; without, from a lower bound on the hottest disc (find_floor).
+          wanted_(above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity()),
+          tracked_(wanted_ > -std::numeric_limits<double>::infinity()),
+          // The passes over the particles run on the solver's threads from 4096 particles, in
+          // `blocks` contiguous ranges of particles, one a thread.
+          threads_(gimlet::detail::threads_of(s)),
+          blocks_(gimlet::detail::observer_blocks(n_, threads_)),
+          team_(blocks_ > 1 ? threads_ : 1),
+          bounds_pass_(static_cast<std::ptrdiff_t>(blocks_), team_),
+          w_(work) {}
+
+    [[nodiscard]] hot_spot_result<vector> run() {
+        hot_spot_result<vector> r;
+        r.centre = vector::Zero();
+        if (n_ == 0) return r;  // no disc and no hottest particle: the result's defaults say none
+        allocate();
+        // The passes run in one parallel region, with barriers between them: where idle threads
+        // sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against 5.5 us
+        // on two threads), and five regions a call took as long as the second thread saved
+        // (docs/performance.md, "The hot spot's passes in one region"). Each pass's shares are
+        // set up where its size is known: the first in the constructor, the others by one
+        // thread between the passes. The branches below are the same for every thread: `refine_`
+        // and `go_` are written in a `single`, before the barrier that ends it.
+        GIMLET_OMP(parallel num_threads(team_) if (blocks_ > 1))
+        {
+            find_extent();
+            GIMLET_OMP(barrier)
+            GIMLET_OMP(single)
+            choose_bins();
+            if (refine_) {
+                find_floor();
+                mark_hot_bins();
+            }
+            if (go_) {
+                sort_into_bins();
+                search_centres();
+            }
+        }
+        if (failed_) std::rethrow_exception(failed_);
+        if (hottest_ == none) return r;  // none, as the result's defaults say
+        r.max_temperature = double(T_[hottest_]);
+        r.temperature = best_.mean;
+        if (best_.found) {
+            r.centre = x_[best_.index];
+            r.particles = best_.count;
+        }
+        return r;
+    }
+
+private:
+    using cell_index = std::array<std::size_t, std::size_t(dim)>;
+    using store_type = typename Solver::store_type;
+    template <class Field>
+    using column_of = std::remove_cvref_t<decltype(std::declval<const store_type&>().template column<Field>())>;
+    static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+
+    // The hottest disc so far, ties to the lowest index: a maximum in a total order, so it does
+    // not depend on the thread count or on the order the centres are tried in.
+    struct best_disc {
+        double mean = -std::numeric_limits<double>::infinity();
+        std::size_t index = 0, count = 0;
+        bool found = false;
+        [[nodiscard]] bool beaten_by(double m, std::size_t i) const {
+            return !found ? m > mean : (m > mean || (m == mean && i < index));
+        }
+    };
+
+    // Every entry of bin, cell and the copies is written before it is read.
+    void allocate() {
+        const vector x0 = x_[0];
+        w_.block_lo.assign(blocks_, x0);
+        w_.block_hi.assign(blocks_, x0);
+        w_.block_hottest.assign(blocks_, none);
+        w_.block_hot_lo.assign(blocks_, x0);
+        w_.block_hot_hi.assign(blocks_, x0);
+        w_.block_hot.assign(blocks_, 0);
+        w_.bin.resize(n_);
+        w_.cell.resize(n_);
+        w_.sorted_x.resize(n_);
+        w_.sorted_m.resize(n_);
+        w_.sorted_T.resize(n_);
+        w_.sorted_index.resize(n_);
+        lo_ = hi_ = x0;
+    }
+
+    // ---- binning ----
+
+    // Per block: the box of its particles, its hottest particle (the first of its largest
+    // temperatures, NaN never taken; `none` where the block has only NaN), and the box of its
+    // particles hotter than `wanted_` (only a disc near one of those can be sought).
+    void find_extent() {
+        gimlet::detail::for_each_block_of(bounds_pass_, n_, blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+            vector lo_b = x_[0], hi_b = x_[0], hot_lo_b = x_[0], hot_hi_b = x_[0];
+            std::size_t h = none;
+            bool hot = false;
+            for (std::size_t i = first; i < last; ++i) {
+                lo_b = lo_b.cwiseMin(x_[i]), hi_b = hi_b.cwiseMax(x_[i]);
+                if (!std::isnan(double(T_[i])) && (h == none || T_[i] > T_[h])) h = i;
+                if (tracked_ && double(T_[i]) > wanted_) {
+                    hot_lo_b = hot ? vector(hot_lo_b.cwiseMin(x_[i])) : x_[i];
+                    hot_hi_b = hot ? vector(hot_hi_b.cwiseMax(x_[i])) : x_[i];
+                    hot = true;
+                }
+            }
+            w_.block_lo[b] = lo_b;
+            w_.block_hi[b] = hi_b;
+            w_.block_hottest[b] = h;
+            w_.block_hot_lo[b] = hot_lo_b;
+            w_.block_hot_hi[b] = hot_hi_b;
+            w_.block_hot[b] = hot;
+        });
+    }
+
+    // One thread: the hottest particle, the bins, and which of them the search needs.
+    void choose_bins() {
+        // The hottest particle, the first of the largest temperatures, NaN never taken: the
+        // blocks' own, merged in block order. Where every temperature is NaN, every disc's mean
+        // is NaN and none is named: the passes after this are skipped.
+        for (const std::size_t h : w_.block_hottest)
+            if (h != none && (hottest_ == none || T_[h] > T_[hottest_])) hottest_ = h;
+        for (std::size_t b = 0; b < blocks_; ++b) lo_ = lo_.cwiseMin(w_.block_lo[b]), hi_ = hi_.cwiseMax(w_.block_hi[b]);
+        // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin. The
+        // bins per axis, counted in double first: at most 2^40 in all, so that the count and the
+        // arrays it sizes do not overflow.
+        std::array<double, dim> per_axis{};
+        double cells = 1;
+        for (int d = 0; d < dim; ++d) cells *= per_axis[d] = std::floor(double(hi_[d] - lo_[d]) / radius_) + 1;
+        const bool countable = cells <= 0x1p40;  // false for NaN too
+        if (countable)
+            for (int d = 0; d < dim; ++d) bins_[d] = std::size_t(per_axis[d]), total_ *= bins_[d];
+        // Counting sort of the particle indices by bin (CSR): deterministic and O(n). What a
+        // disc sums is copied in that order (position, mass, temperature), so that a disc reads
+        // its bins' particles contiguously. Each block counts its particles per bin and takes
+        // its offsets within each bin in block order, so the order is the serial sort's: by bin,
+        // then by index. (A count per block and bin: at most n / bins blocks, so that the counts
+        // take no more room than the particles.)
+        sort_blocks_ = std::clamp<std::size_t>(n_ / total_, 1, blocks_);
+        merge_blocks_ = gimlet::detail::observer_blocks(total_ * (sort_blocks_ - 1), threads_);
+        if (hottest_ == none) return;
+        // An exception must not leave the region (that would end the program): a radius too
+        // small for the bins or an allocation that fails is kept and thrown after it.
+        try {
+            require(countable, "hot-spot radius (m)", radius_,
+                    "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
+            // No disc is hotter than its hottest particle (the means, exactly: disc): where the
+            // hottest particle is no hotter than `above`, no disc is sought and nothing is
+            // sorted (the result names none). A caller that tracks a running peak meets this in
+            // every step until the material heats past it.
+            if (!(double(T_[hottest_]) > wanted_)) return;
+            if (tracked_) {
+                // The box of the particles hotter than `wanted_` (the hottest one among them).
+                vector hot_lo = x_[hottest_], hot_hi = x_[hottest_];
+                for (std::size_t b = 0; b < blocks_; ++b)
+                    if (w_.block_hot[b]) hot_lo = hot_lo.cwiseMin(w_.block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(w_.block_hot_hi[b]);
+                prepare(hot_lo, hot_hi);
+            } else {
+                w_.block_mass.assign(blocks_, 0.0);
+                w_.block_excess.assign(blocks_, 0.0);
+                w_.block_ring.assign(blocks_, 0.0);
+                w_.hot_bin.assign(blocks_ * total_, 0);  // a row per block: no two threads write one byte
+                near_pass_.emplace(static_cast<std::ptrdiff_t>(blocks_), team_);
+                mark_pass_.emplace(static_cast<std::ptrdiff_t>(blocks_), team_);
+                refine_ = true;  // last, as `go_`: find_floor and mark_hot_bins run next
+            }
+        } catch (...) {
+            failed_ = std::current_exception();
+        }
+    }
+
+    // One thread: the kept and tried bins' ranges around the box [hot_lo, hot_hi] of the hot
+    // particles, and the sort's arrays.
+    void prepare(const vector& hot_lo, const vector& hot_hi) {
+        for (int d = 0; d < dim; ++d) {
+            const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
+            keep_lo_[d] = a >= 2 ? a - 2 : 0;
+            keep_hi_[d] = std::min(z + 2, bins_[d] - 1);
+            try_lo_[d] = a >= 1 ? a - 1 : 0;
+            try_hi_[d] = std::min(z + 1, bins_[d] - 1);
+            keep_from_[d] = (double(keep_lo_[d]) - 1) * radius_;
+            keep_to_[d] = (double(keep_hi_[d]) + 2) * radius_;
+        }
+        w_.cursor.assign(sort_blocks_ * total_, 0);
+        w_.block_max.assign(sort_blocks_ * total_, -std::numeric_limits<double>::infinity());
+        w_.start.reserve(total_ + 1);  // so that block_offsets does not allocate
+        count_pass_.emplace(static_cast<std::ptrdiff_t>(sort_blocks_), team_);
+        copy_pass_.emplace(static_cast<std::ptrdiff_t>(sort_blocks_), team_);
+        merge_pass_.emplace(static_cast<std::ptrdiff_t>(merge_blocks_), team_);
+        go_ = true;
+    }
+
+    // With no `above`: a lower bound on the hottest particle's disc as `disc` sums it (the
+    // floor): the mean of the particles surely in it (well inside the radius and in the bins
+    // `disc` reads), or the coolest particle of the rim, whose membership the two sums' rounding
+    // could decide apart, whichever is lower (a mean of the disc's particles is at least the
+    // smaller of those two), less a margin. Summed relative to the hottest temperature, as
+    // `disc` sums (every term at most zero), block by block: any order of such a sum rounds it
+    // by a few ulps of |mean| + |ref - mean| per particle, and a millionth of that is far
+    // beyond. A NaN in either gives no bound (the search is not narrowed).
+    void find_floor() {
+        const vector c = x_[hottest_];
+        const double ref = std::isfinite(double(T_[hottest_])) ? double(T_[hottest_]) : 0.0;
+        const double r2_in = r2_ * (1 - 1e-9), r2_out = r2_ * (1 + 1e-9);
+        cell_index at_hottest{};
+        for (int d = 0; d < dim; ++d) at_hottest[d] = bin_of(c, d);
+        gimlet::detail::for_each_block_of(*near_pass_, n_, blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+            double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
+            for (std::size_t i = first; i < last; ++i) {
+                const double d2 = double((x_[i] - c).squaredNorm());
+                if (!(d2 <= r2_out)) continue;  // a NaN place too
+                if (d2 > r2_in) {
+                    // A NaN stays (std::min would drop it): the sum below then gives no bound.
+                    if (!std::isnan(rim)) rim = std::isnan(double(T_[i])) ? double(T_[i]) : std::min(rim, double(T_[i]));
+                    continue;
+                }
+                bool near = true;  // in the 3^dim bins around the hottest particle's, as `disc` reads
+                for (int d = 0; d < dim; ++d) {
+                    const std::size_t k = bin_of(x_[i], d);
+                    near = near && k + 1 >= at_hottest[d] && k <= at_hottest[d] + 1;
+                }
+                if (!near) continue;
+                mass += double(m_[i]);
+                excess += double(m_[i]) * (double(T_[i]) - ref);
+            }
+            w_.block_mass[b] = mass;
+            w_.block_excess[b] = excess;
+            w_.block_ring[b] = rim;
+        });
+        GIMLET_OMP(barrier)
+        GIMLET_OMP(single)
+        {
+            double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
+            bool nan_rim = false;
+            for (std::size_t b = 0; b < blocks_; ++b) {
+                mass += w_.block_mass[b], excess += w_.block_excess[b];
+                if (std::isnan(w_.block_ring[b])) nan_rim = true;
+                else rim = std::min(rim, w_.block_ring[b]);
+            }
+            const double bound = std::min(ref + excess / mass, rim);
+            if (std::isfinite(bound) && !nan_rim) hot_floor_ = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
+        }
+    }
+
+    // With no `above`: every centre whose bins' hottest particle reaches the floor is near a
+    // particle at least hot_floor_ hot, so the bins kept are those within two of a bin holding
+    // one (`keep_bin`), those tried within one (`try_bin`). A map, not a box: two hot spots far
+    // apart would put everything between them in a box.
+    void mark_hot_bins() {
+        // The bins holding a particle at least hot_floor_, and the box of those particles.
+        gimlet::detail::for_each_block_of(*mark_pass_, n_, blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+            vector hot_lo_b = x_[hottest_], hot_hi_b = x_[hottest_];
+            std::uint8_t* hot_row = w_.hot_bin.data() + b * total_;
+            for (std::size_t i = first; i < last; ++i) {
+                if (!(double(T_[i]) >= hot_floor_)) continue;
+                cell_index at{};
+                bool inside = true;  // a place in the bins (not NaN)
+                for (int d = 0; d < dim; ++d) {
+                    const double q = double(x_[i][d] - lo_[d]) / radius_;  // bin_of's quotient
+                    inside = inside && q >= 0 && q < double(bins_[d]);
+                    at[d] = inside ? std::size_t(q) : 0;
+                }
+                if (!inside) continue;
+                hot_lo_b = hot_lo_b.cwiseMin(x_[i]), hot_hi_b = hot_hi_b.cwiseMax(x_[i]);
+                hot_row[flat(at)] = 1;
+            }
+            w_.block_hot_lo[b] = hot_lo_b;
+            w_.block_hot_hi[b] = hot_hi_b;
+        });
+        GIMLET_OMP(barrier)
+        GIMLET_OMP(single)
+        {
+            vector hot_lo = x_[hottest_], hot_hi = x_[hottest_];
+            for (std::size_t b = 0; b < blocks_; ++b)
+                hot_lo = hot_lo.cwiseMin(w_.block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(w_.block_hot_hi[b]);
+            try {
+                w_.keep_bin.assign(total_, 0);
+                w_.try_bin.assign(total_, 0);
+                prepare(hot_lo, hot_hi);
+                // Each hot bin marks the bins within two (kept) and one (tried).
+                cell_index from{}, to{};
+                for (int d = 0; d < dim; ++d) from[d] = bin_of(hot_lo, d), to[d] = bin_of(hot_hi, d);
+                for_cells(from, to, [&](const cell_index& h) {
+                    bool hot = false;
+                    for (std::size_t b = 0; b < blocks_; ++b) hot = hot || w_.hot_bin[b * total_ + flat(h)];
+                    if (!hot) return;
+                    cell_index a{}, z{};
+                    for (int d = 0; d < dim; ++d) a[d] = h[d] >= 2 ? h[d] - 2 : 0, z[d] = std::min(h[d] + 2, bins_[d] - 1);
+                    for_cells(a, z, [&](const cell_index& k) { w_.keep_bin[flat(k)] = 1; });
+                    for (int d = 0; d < dim; ++d) a[d] = h[d] >= 1 ? h[d] - 1 : 0, z[d] = std::min(h[d] + 1, bins_[d] - 1);
+                    for_cells(a, z, [&](const cell_index& k) { w_.try_bin[flat(k)] = 1; });
+                });
+            } catch (...) {
+                go_ = false;
+                failed_ = std::current_exception();
+            }
+        }
+    }
+
+    // The kept particles (those in the kept bins, and, with no `above`, in a bin near a hot one)
+    // sorted by bin, their copies in that order, and each bin's hottest particle.
+    void sort_into_bins() {
+        const bool refine = refine_;
+        gimlet::detail::for_each_block_of(*count_pass_, n_, sort_blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+            std::size_t* count = w_.cursor.data() + b * total_;
+            double* t_max = w_.block_max.data() + b * total_;
+            for (std::size_t i = first; i < last; ++i) {
+                // The range one bin wider than the kept bins, in the quantity bin_of divides by
+                // the radius, tells most particles outside them without the division.
+                bool kept = true;
+                for (int d = 0; d < dim; ++d) {
+                    const double from_lo = double(x_[i][d] - lo_[d]);  // what bin_of divides
+                    kept = kept && from_lo >= keep_from_[d] && from_lo <= keep_to_[d];
+                }
+                if (kept)
+                    for (int d = 0; d < dim; ++d) {
+                        w_.cell[i][d] = bin_of(x_[i], d);
+                        kept = kept && w_.cell[i][d] >= keep_lo_[d] && w_.cell[i][d] <= keep_hi_[d];
+                    }
+                if (kept) w_.bin[i] = flat(w_.cell[i]);
+                if (!kept || (refine && !w_.keep_bin[w_.bin[i]])) {
+                    w_.bin[i] = total_;  // not sorted: no disc that is sought reaches it
+                    continue;
+                }
+                ++count[w_.bin[i]];
+                t_max[w_.bin[i]] = std::max(t_max[w_.bin[i]], double(T_[i]));
+            }
+        });
+        GIMLET_OMP(barrier)
+        GIMLET_OMP(single)
+        gimlet::detail::block_offsets(w_.cursor, sort_blocks_, total_, w_.start);
+        // The copies in bin order, and each bin's hottest particle: the blocks' maxima (a
+        // maximum, whatever the blocks), in the first block's entries, the bins split between
+        // the threads where there are many. No barrier between the two: the copies write
+        // `sorted_*` and each block's row of `cursor`, the merge only the first row of
+        // `block_max`, reading the others.
+        gimlet::detail::for_each_block_of(*copy_pass_, n_, sort_blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+            std::size_t* at = w_.cursor.data() + b * total_;
+            for (std::size_t i = first; i < last; ++i) {
+                if (w_.bin[i] == total_) continue;
+                const std::size_t j = at[w_.bin[i]]++;
+                w_.sorted_x[j] = x_[i];
+                w_.sorted_m[j] = double(m_[i]);
+                w_.sorted_T[j] = double(T_[i]);
+                w_.sorted_index[j] = i;
+            }
+        });
+        gimlet::detail::for_each_block_of(*merge_pass_, total_, merge_blocks_, [&](std::size_t, std::size_t first, std::size_t last) {
+            for (std::size_t b = 1; b < sort_blocks_; ++b)
+                for (std::size_t k = first; k < last; ++k)
+                    w_.block_max[k] = std::max(w_.block_max[k], w_.block_max[b * total_ + k]);
+        });
+        GIMLET_OMP(barrier)
+    }
+
+    // ---- the candidate search ----
+
+    // A centre whose bins' hottest particle is cooler than the disc around the hottest particle
+    // (or than `above`, whichever is hotter: the floor) cannot hold the hottest disc, since its
+    // mean is at most that particle's temperature, exactly (disc). Nor where that particle is as
+    // hot as the floor and the centre comes after the hottest particle, whose own disc is then
+    // tried and would win the tie. So where a disc hotter than `above` exists (always, with no
+    // `above`), the result is that of trying every centre, at O(n) cost where the hot material
+    // is small, and where the temperatures are uniform (before a hot spot forms) every centre
+    // after the hottest particle is skipped. The hottest particle's disc is summed once and its
+    // bits reused in the loop, so the floor and that disc are the same number whatever the
+    // compiler does with the two call sites.
+    void search_centres() {
+        GIMLET_OMP(single)
+        {
+            hottest_mean_ = disc(hottest_, bound_at(hottest_), hottest_count_);
+            floor_ = std::max(hottest_mean_, wanted_);
+        }
+        // The centres are tried on demand in small chunks, not in the solver's shares
+        // (detail::thread_shares): a centre's cost varies a hundredfold (most are skipped, a hot
+        // one sums its disc), and the centres are visited once a call, so there is no data to
+        // keep near a core; the hottest disc is the same whoever tries it. Only the kept
+        // particles in the bins tried are centres: any other centre's bins hold no particle
+        // hotter than `wanted_`, so its disc is not sought.
+        const bool refine = refine_;
+        best_disc local;
+        const auto kept = static_cast<std::ptrdiff_t>(w_.start[total_]);
+        GIMLET_OMP(for schedule(dynamic, 256) nowait)
+        for (std::ptrdiff_t k = 0; k < kept; ++k) {
+            const std::size_t i = w_.sorted_index[std::size_t(k)];
+            bool tried = true;
+            for (int d = 0; d < dim; ++d) tried = tried && w_.cell[i][d] >= try_lo_[d] && w_.cell[i][d] <= try_hi_[d];
+            if (!tried || (refine && !w_.try_bin[w_.bin[i]])) continue;
+            const double bound = bound_at(i);
+            if (bound < floor_ || (bound == floor_ && i > hottest_)) continue;
+            std::size_t count = hottest_count_;
+            const double mean = i == hottest_ ? hottest_mean_ : disc(i, bound, count);
+            if (local.beaten_by(mean, i)) local = {mean, i, count, true};
+        }
+        GIMLET_OMP(critical(gimlet_hot_spot))
+        if (local.found && best_.beaten_by(local.mean, local.index)) best_ = local;
+    }
+
+    // ---- the disc sums ----
+
+    // The mean over the disc centred on particle i, whose bins' hottest particle is `bound`,
+    // summed in bin order relative to it (the same sums wherever it is asked for). Rounding is
+    // monotone and 0 is representable: T - bound <= 0 rounds to <= 0, and so do its product
+    // with m >= 0, the sum of such terms (a multiply-add too) and its quotient by the mass, so
+    // the result is at most `bound`, exactly. (Finite temperatures whose differences do not
+    // overflow; the solver stops on a non-finite one.)
+    double disc(std::size_t i, double bound, std::size_t& count) const {
+        const double ref = std::isfinite(bound) ? bound : 0.0;
+        double mass = 0, excess = 0;
+        count = 0;
+        const vector c = x_[i];
+        around(i, [&](std::size_t k) {
+            for (std::size_t j = w_.start[k]; j < w_.start[k + 1]; ++j) {
+                if (double((w_.sorted_x[j] - c).squaredNorm()) > r2_) continue;
+                mass += w_.sorted_m[j];
+                excess += w_.sorted_m[j] * (w_.sorted_T[j] - ref);
+                ++count;
+            }
+        });
+        return ref + excess / mass;
+    }
+
+    // The hottest particle of the 3^dim bins around particle i's (NaN never taken).
+    [[nodiscard]] double bound_at(std::size_t i) const {
+        double bound = -std::numeric_limits<double>::infinity();
+        around(i, [&](std::size_t b) { bound = std::max(bound, w_.block_max[b]); });
+        return bound;
+    }
+
+    // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
+    // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
+    // 3^dim offsets and testing each cost a fifth of the search's instructions
+    // (docs/performance.md, "The hot spot's bins").
+    template <class F>
+    void around(std::size_t i, F&& f) const {
+        const auto& b = w_.cell[i];
+        cell_index first{}, last{};
+        for (int d = 0; d < dim; ++d) {
+            first[d] = b[d] > 0 ? b[d] - 1 : 0;
+            last[d] = std::min(b[d] + 1, bins_[d] - 1);
+        }
+        if constexpr (dim == 2) {
+            for (std::size_t y = first[1]; y <= last[1]; ++y)
+                for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f(y * bins_[0] + x0);
+        } else {
+            for (std::size_t z = first[2]; z <= last[2]; ++z)
+                for (std::size_t y = first[1]; y <= last[1]; ++y)
+                    for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins_[1] + y) * bins_[0] + x0);
+        }
+    }
+
+    // f(cell) for every cell from `from` to `to` (inclusive, per axis), the first axis fastest.
+    template <class F>
+    static void for_cells(const cell_index& from, const cell_index& to, F&& f) {
+        cell_index k{};
+        if constexpr (dim == 2) {
+            for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
+                for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
+        } else {
+            for (k[2] = from[2]; k[2] <= to[2]; ++k[2])
+                for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
+                    for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
+        }
+    }
+
+    [[nodiscard]] std::size_t bin_of(const vector& p, int d) const { return std::size_t(double(p[d] - lo_[d]) / radius_); }
+    [[nodiscard]] std::size_t flat(const cell_index& b) const {
+        std::size_t k = 0;
+        for (int d = dim - 1; d >= 0; --d) k = k * bins_[d] + b[d];
+        return k;
+    }
+
+    // The particles and the question.
+    const column_of<fields::position>& x_;
+    const column_of<fields::mass>& m_;
+    const column_of<fields::temperature>& T_;
+    const std::size_t n_;
+    const double radius_, r2_, wanted_;
+    const bool tracked_;
+    // The threads: blocks of particles, a team for the region, and each pass's shares.
+    const int threads_;
+    const std::size_t blocks_;
+    const int team_;
+    gimlet::detail::thread_shares bounds_pass_;
+    std::optional<gimlet::detail::thread_shares> near_pass_, mark_pass_, count_pass_, copy_pass_, merge_pass_;
+    hot_spot_workspace<vector>& w_;
+    // The bins: the particles' box, the count per axis and in all, and the blocks of the sort.
+    vector lo_, hi_;
+    cell_index bins_{};
+    std::size_t total_ = 1, sort_blocks_ = 1, merge_blocks_ = 1;
+    // The bins kept per axis (those within two of the box of the particles hotter than
+    // `wanted_`: every disc that could be sought reads only these), the bins whose particles are
+    // tried as centres (within one), and, in the quantity bin_of divides by the radius, a range
+    // one bin wider than the kept bins.
+    cell_index keep_lo_{}, keep_hi_{}, try_lo_{}, try_hi_{};
+    std::array<double, dim> keep_from_{}, keep_to_{};
+    // The search: the hottest particle and its disc, the floor below which no centre is tried,
+    // and the hottest disc found.
+    std::size_t hottest_ = none, hottest_count_ = 0;
+    double hottest_mean_ = 0, floor_ = 0;
+    double hot_floor_ = -std::numeric_limits<double>::infinity();
+    best_disc best_;
+    // What the one thread of a `single` decides for all: a particle hotter than `wanted_` and the
+    // bins allocated (go_: the sort and the search run); no `above`, so the bins are narrowed by
+    // the floor first (refine_); an exception, thrown after the region.
+    bool go_ = false, refine_ = false;
+    std::exception_ptr failed_;
+};
+
+}  // namespace detail
 
 /// Over every particle centre c, the mass-weighted mean temperature of the particles whose
 /// centres lie within `radius` (m) of c; the largest such mean is the hot-spot temperature.
@@ -82,473 +622,7 @@ template <class Solver>
     static_assert(Solver::store_type::template has<fields::temperature>,
                   "hot_spot needs particle temperatures: use a thermal policy that is on");
     require_positive("hot-spot radius (m)", radius);
-    constexpr int dim = Solver::dim;
-    using vector = typename Solver::vector;
-    const auto& store = s.particles();
-    const auto& x = store.template column<fields::position>();
-    const auto& m = store.template column<fields::mass>();
-    const auto& T = store.template column<fields::temperature>();
-    hot_spot_result<vector> r;
-    r.centre = vector::Zero();
-    const std::size_t n = store.size();
-    if (n == 0) return r;  // no disc and no hottest particle: the result's defaults say none
-
-    // The passes over the particles run on the solver's threads from 4096 particles, in
-    // `blocks` contiguous ranges of particles, one a thread. Each gives what the serial pass
-    // gives (a minimum, a maximum, a stable order), so nothing depends on the thread count.
-    const int threads = detail::threads_of(s);
-    const std::size_t blocks = detail::observer_blocks(n, threads);
-    // The discs sought are hotter than this (NaN and +infinity ignored, as documented). With
-    // one (a tracked peak), the bins kept are found from the box of the particles hotter than
-    // it; without, from a lower bound on the hottest disc (`refine`, below).
-    const double wanted =
-        above < std::numeric_limits<double>::infinity() ? above : -std::numeric_limits<double>::infinity();
-    const bool tracked = wanted > -std::numeric_limits<double>::infinity();
-
-    // The passes run in one parallel region (below), with barriers between them: where idle
-    // threads sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against
-    // 5.5 us on two threads), and five regions a call took as long as the second thread saved
-    // (docs/performance.md, "The hot spot's passes in one region"). Each pass's shares are set
-    // up where its size is known: the first here, the others by one thread between the passes.
-    auto& block_lo = work.block_lo;
-    auto& block_hi = work.block_hi;
-    auto& block_hottest = work.block_hottest;
-    constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-    block_lo.assign(blocks, x[0]);
-    block_hi.assign(blocks, x[0]);
-    block_hottest.assign(blocks, none);
-    // Per block, the box of its particles hotter than `wanted` (if any): only a disc near one of
-    // those can be sought.
-    auto& block_hot_lo = work.block_hot_lo;
-    auto& block_hot_hi = work.block_hot_hi;
-    auto& block_hot = work.block_hot;
-    block_hot_lo.assign(blocks, x[0]);
-    block_hot_hi.assign(blocks, x[0]);
-    block_hot.assign(blocks, 0);
-    // Every entry of bin, cell and the copies is written before it is read.
-    auto& start = work.start;
-    auto& bin = work.bin;
-    auto& cell = work.cell;  // each particle's bin, per axis
-    auto& cursor = work.cursor;  // per block and bin: a count, then an offset
-    auto& block_max = work.block_max;  // per block and bin, the hottest particle's temperature
-    auto& sorted_x = work.sorted_x;
-    auto& sorted_m = work.sorted_m;
-    auto& sorted_T = work.sorted_T;
-    auto& sorted_index = work.sorted_index;  // each copy's particle
-    bin.resize(n);
-    cell.resize(n);
-    sorted_x.resize(n);
-    sorted_m.resize(n);
-    sorted_T.resize(n);
-    sorted_index.resize(n);
-    const int team = blocks > 1 ? threads : 1;
-    detail::thread_shares bounds_pass(static_cast<std::ptrdiff_t>(blocks), team);
-    std::optional<detail::thread_shares> count_pass, copy_pass, merge_pass;
-    vector lo = x[0], hi = x[0];
-    std::array<std::size_t, dim> bins{};
-    std::size_t total = 1, sort_blocks = 1, merge_blocks = 1;
-    // The bins kept per axis (those within two of the box of the particles hotter than
-    // `wanted`: every disc that could be sought reads only these), the bins whose particles are
-    // tried as centres (within one), and, in the quantity bin_of divides by the radius, a range
-    // one bin wider than the kept bins, which tells most particles outside them without the
-    // division.
-    std::array<std::size_t, dim> keep_lo{}, keep_hi{}, try_lo{}, try_hi{};
-    std::array<double, dim> keep_from{}, keep_to{};
-    auto bin_of = [&](const vector& p, int d) { return std::size_t(double(p[d] - lo[d]) / radius); };
-    auto flat = [&](const std::array<std::size_t, dim>& b) {
-        std::size_t k = 0;
-        for (int d = dim - 1; d >= 0; --d) k = k * bins[d] + b[d];
-        return k;
-    };
-    // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
-    // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
-    // 3^dim offsets and testing each cost a fifth of the search's instructions
-    // (docs/performance.md, "The hot spot's bins").
-    auto around = [&](std::size_t i, auto&& f) {
-        const auto& b = cell[i];
-        std::array<std::size_t, dim> first{}, last{};
-        for (int d = 0; d < dim; ++d) {
-            first[d] = b[d] > 0 ? b[d] - 1 : 0;
-            last[d] = std::min(b[d] + 1, bins[d] - 1);
-        }
-        if constexpr (dim == 2) {
-            for (std::size_t y = first[1]; y <= last[1]; ++y)
-                for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f(y * bins[0] + x0);
-        } else {
-            for (std::size_t z = first[2]; z <= last[2]; ++z)
-                for (std::size_t y = first[1]; y <= last[1]; ++y)
-                    for (std::size_t x0 = first[0]; x0 <= last[0]; ++x0) f((z * bins[1] + y) * bins[0] + x0);
-        }
-    };
-    // f(cell) for every cell from `from` to `to` (inclusive, per axis), the first axis fastest.
-    auto for_cells = [&](const std::array<std::size_t, dim>& from, const std::array<std::size_t, dim>& to, auto&& f) {
-        std::array<std::size_t, dim> k{};
-        if constexpr (dim == 2) {
-            for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
-                for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
-        } else {
-            for (k[2] = from[2]; k[2] <= to[2]; ++k[2])
-                for (k[1] = from[1]; k[1] <= to[1]; ++k[1])
-                    for (k[0] = from[0]; k[0] <= to[0]; ++k[0]) f(k);
-        }
-    };
-    // The hottest particle of the 3^dim bins around particle i's (NaN never taken).
-    auto bound_at = [&](std::size_t i) {
-        double bound = -std::numeric_limits<double>::infinity();
-        around(i, [&](std::size_t b) { bound = std::max(bound, block_max[b]); });
-        return bound;
-    };
-    // The mean over the disc centred on particle i, whose bins' hottest particle is `bound`,
-    // summed in bin order relative to it (the same sums wherever it is asked for). Rounding is
-    // monotone and 0 is representable: T - bound <= 0 rounds to <= 0, and so do its product
-    // with m >= 0, the sum of such terms (a multiply-add too) and its quotient by the mass, so
-    // the result is at most `bound`, exactly. (Finite temperatures whose differences do not
-    // overflow; the solver stops on a non-finite one.)
-    const double r2 = radius * radius;
-    auto disc = [&](std::size_t i, double bound, std::size_t& count) {
-        const double ref = std::isfinite(bound) ? bound : 0.0;
-        double mass = 0, excess = 0;
-        count = 0;
-        const vector c = x[i];
-        around(i, [&](std::size_t k) {
-            for (std::size_t j = start[k]; j < start[k + 1]; ++j) {
-                if (double((sorted_x[j] - c).squaredNorm()) > r2) continue;
-                mass += sorted_m[j];
-                excess += sorted_m[j] * (sorted_T[j] - ref);
-                ++count;
-            }
-        });
-        return ref + excess / mass;
-    };
-    // The centres' search (below) keeps the hottest disc, ties to the lowest index: a maximum
-    // in a total order, so it does not depend on the thread count.
-    struct best_disc {
-        double mean = -std::numeric_limits<double>::infinity();
-        std::size_t index = 0, count = 0;
-        bool found = false;
-        [[nodiscard]] bool beaten_by(double m, std::size_t i) const {
-            return !found ? m > mean : (m > mean || (m == mean && i < index));
-        }
-    };
-    best_disc best;
-    std::size_t hottest = none, hottest_count = 0;
-    double hottest_mean = 0, floor = 0;
-    // An exception must not leave the region (that would end the program): the serial step's,
-    // a radius too small for the bins or an allocation that fails, is kept and thrown after it.
-    std::exception_ptr failed;
-    bool go = false;  // a particle hotter than `wanted`, and the bins allocated: the passes after the first
-    // A search with no `above` (a sample's) is narrowed too, by a lower bound on the hottest
-    // disc (`hot_floor`, below the search's floor): every centre whose bins' hottest particle
-    // reaches that floor is then near a particle at least hot_floor hot, so the bins kept are
-    // those within two of a bin holding one (`keep_bin`, `try_bin` within one). A map, not a
-    // box: two hot spots far apart would put everything between them in a box.
-    bool refine = false;
-    double hot_floor = -std::numeric_limits<double>::infinity();
-    auto& block_mass = work.block_mass;
-    auto& block_excess = work.block_excess;
-    auto& block_ring = work.block_ring;
-    auto& hot_bin = work.hot_bin;
-    auto& keep_bin = work.keep_bin;
-    auto& try_bin = work.try_bin;
-    std::optional<detail::thread_shares> near_pass, mark_pass;
-    // The kept and tried bins' ranges around the box [hot_lo, hot_hi] of the hot particles, and
-    // the sort's arrays (one thread, in a `single`).
-    auto prepare = [&](const vector& hot_lo, const vector& hot_hi) {
-        for (int d = 0; d < dim; ++d) {
-            const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
-            keep_lo[d] = a >= 2 ? a - 2 : 0;
-            keep_hi[d] = std::min(z + 2, bins[d] - 1);
-            try_lo[d] = a >= 1 ? a - 1 : 0;
-            try_hi[d] = std::min(z + 1, bins[d] - 1);
-            keep_from[d] = (double(keep_lo[d]) - 1) * radius;
-            keep_to[d] = (double(keep_hi[d]) + 2) * radius;
-        }
-        cursor.assign(sort_blocks * total, 0);
-        block_max.assign(sort_blocks * total, -std::numeric_limits<double>::infinity());
-        start.reserve(total + 1);  // so that block_offsets does not allocate
-        count_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-        copy_pass.emplace(static_cast<std::ptrdiff_t>(sort_blocks), team);
-        merge_pass.emplace(static_cast<std::ptrdiff_t>(merge_blocks), team);
-        go = true;
-    };
-    GIMLET_OMP(parallel num_threads(team) if (blocks > 1))
-    {
-        // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin.
-        // The same pass finds each block's hottest particle: the first of its largest
-        // temperatures, NaN never taken (`none` where the block has only NaN).
-        detail::for_each_block_of(bounds_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-            vector lo_b = x[0], hi_b = x[0], hot_lo_b = x[0], hot_hi_b = x[0];
-            std::size_t h = none;
-            bool hot = false;
-            for (std::size_t i = first; i < last; ++i) {
-                lo_b = lo_b.cwiseMin(x[i]), hi_b = hi_b.cwiseMax(x[i]);
-                if (!std::isnan(double(T[i])) && (h == none || T[i] > T[h])) h = i;
-                if (tracked && double(T[i]) > wanted) {
-                    hot_lo_b = hot ? vector(hot_lo_b.cwiseMin(x[i])) : x[i];
-                    hot_hi_b = hot ? vector(hot_hi_b.cwiseMax(x[i])) : x[i];
-                    hot = true;
-                }
-            }
-            block_lo[b] = lo_b;
-            block_hi[b] = hi_b;
-            block_hottest[b] = h;
-            block_hot_lo[b] = hot_lo_b;
-            block_hot_hi[b] = hot_hi_b;
-            block_hot[b] = hot;
-        });
-        GIMLET_OMP(barrier)
-        GIMLET_OMP(single)
-        {
-            // The hottest particle, the first of the largest temperatures, NaN never taken:
-            // the blocks' own, merged in block order. Where every temperature is NaN, every
-            // disc's mean is NaN and none is named: the passes below are skipped.
-            for (const std::size_t h : block_hottest)
-                if (h != none && (hottest == none || T[h] > T[hottest])) hottest = h;
-            for (std::size_t b = 0; b < blocks; ++b) lo = lo.cwiseMin(block_lo[b]), hi = hi.cwiseMax(block_hi[b]);
-            // The bins per axis, counted in double first: at most 2^40 in all, so that the
-            // count and the arrays it sizes do not overflow.
-            std::array<double, dim> per_axis{};
-            double cells = 1;
-            for (int d = 0; d < dim; ++d) cells *= per_axis[d] = std::floor(double(hi[d] - lo[d]) / radius) + 1;
-            const bool countable = cells <= 0x1p40;  // false for NaN too
-            if (countable)
-                for (int d = 0; d < dim; ++d) bins[d] = std::size_t(per_axis[d]), total *= bins[d];
-            // Counting sort of the particle indices by bin (CSR): deterministic and O(n).
-            // What a disc sums is copied in that order (position, mass, temperature), so that
-            // a disc reads its bins' particles contiguously. Each block counts its particles
-            // per bin and takes its offsets within each bin in block order, so the order is
-            // the serial sort's: by bin, then by index. (A count per block and bin: at most
-            // n / bins blocks, so that the counts take no more room than the particles.)
-            sort_blocks = std::clamp<std::size_t>(n / total, 1, blocks);
-            merge_blocks = detail::observer_blocks(total * (sort_blocks - 1), threads);
-            if (hottest != none) try {
-                    require(countable, "hot-spot radius (m)", radius,
-                            "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
-                    // No disc is hotter than its hottest particle (the means, above, exactly):
-                    // where the hottest particle is no hotter than `above`, no disc is sought and
-                    // nothing is sorted (the result names none). A caller that tracks a running
-                    // peak meets this in every step until the material heats past it.
-                    if (double(T[hottest]) > wanted) {
-                        if (tracked) {
-                            // The box of the particles hotter than `wanted` (the hottest one among them).
-                            vector hot_lo = x[hottest], hot_hi = x[hottest];
-                            for (std::size_t b = 0; b < blocks; ++b)
-                                if (block_hot[b]) hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
-                            prepare(hot_lo, hot_hi);
-                        } else {
-                            block_mass.assign(blocks, 0.0);
-                            block_excess.assign(blocks, 0.0);
-                            block_ring.assign(blocks, 0.0);
-                            hot_bin.assign(blocks * total, 0);  // a row per block: no two threads write one byte
-                            near_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
-                            mark_pass.emplace(static_cast<std::ptrdiff_t>(blocks), team);
-                            refine = true;  // last, as `go`: the passes below find hot_floor and the bins near it
-                        }
-                    }
-                } catch (...) {
-                    failed = std::current_exception();
-                }
-        }
-        if (refine) {  // the same for every thread, as `go`
-            // A lower bound on the hottest particle's disc as `disc` sums it (the floor, with no
-            // `above`): the mean of the particles surely in it (well inside the radius and in the
-            // bins `disc` reads), or the coolest particle of the rim, whose membership the two
-            // sums' rounding could decide apart, whichever is lower (a mean of the disc's
-            // particles is at least the smaller of those two), less a margin. Summed relative
-            // to the hottest temperature, as `disc` sums (every term at most zero), block by
-            // block: any order of such a sum rounds it by a few ulps of |mean| + |ref - mean|
-            // per particle, and a millionth of that is far beyond. A NaN in either gives no
-            // bound (the search is not narrowed).
-            const vector c = x[hottest];
-            const double ref = std::isfinite(double(T[hottest])) ? double(T[hottest]) : 0.0;
-            const double r2_in = r2 * (1 - 1e-9), r2_out = r2 * (1 + 1e-9);
-            std::array<std::size_t, dim> at_hottest{};
-            for (int d = 0; d < dim; ++d) at_hottest[d] = bin_of(c, d);
-            detail::for_each_block_of(*near_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-                double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
-                for (std::size_t i = first; i < last; ++i) {
-                    const double d2 = double((x[i] - c).squaredNorm());
-                    if (!(d2 <= r2_out)) continue;  // a NaN place too
-                    if (d2 > r2_in) {
-                        // A NaN stays (std::min would drop it): the single below then gives no bound.
-                        if (!std::isnan(rim)) rim = std::isnan(double(T[i])) ? double(T[i]) : std::min(rim, double(T[i]));
-                        continue;
-                    }
-                    bool near = true;  // in the 3^dim bins around the hottest particle's, as `disc` reads
-                    for (int d = 0; d < dim; ++d) {
-                        const std::size_t k = bin_of(x[i], d);
-                        near = near && k + 1 >= at_hottest[d] && k <= at_hottest[d] + 1;
-                    }
-                    if (!near) continue;
-                    mass += double(m[i]);
-                    excess += double(m[i]) * (double(T[i]) - ref);
-                }
-                block_mass[b] = mass;
-                block_excess[b] = excess;
-                block_ring[b] = rim;
-            });
-            GIMLET_OMP(barrier)
-            GIMLET_OMP(single)
-            {
-                double mass = 0, excess = 0, rim = std::numeric_limits<double>::infinity();
-                bool nan_rim = false;
-                for (std::size_t b = 0; b < blocks; ++b) {
-                    mass += block_mass[b], excess += block_excess[b];
-                    if (std::isnan(block_ring[b])) nan_rim = true;
-                    else rim = std::min(rim, block_ring[b]);
-                }
-                const double bound = std::min(ref + excess / mass, rim);
-                if (std::isfinite(bound) && !nan_rim) hot_floor = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
-            }
-            // The bins holding a particle at least hot_floor, and the box of those particles.
-            detail::for_each_block_of(*mark_pass, n, blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-                vector hot_lo_b = x[hottest], hot_hi_b = x[hottest];
-                std::uint8_t* hot_row = hot_bin.data() + b * total;
-                for (std::size_t i = first; i < last; ++i) {
-                    if (!(double(T[i]) >= hot_floor)) continue;
-                    std::array<std::size_t, dim> at{};
-                    bool inside = true;  // a place in the bins (not NaN)
-                    for (int d = 0; d < dim; ++d) {
-                        const double q = double(x[i][d] - lo[d]) / radius;  // bin_of's quotient
-                        inside = inside && q >= 0 && q < double(bins[d]);
-                        at[d] = inside ? std::size_t(q) : 0;
-                    }
-                    if (!inside) continue;
-                    hot_lo_b = hot_lo_b.cwiseMin(x[i]), hot_hi_b = hot_hi_b.cwiseMax(x[i]);
-                    hot_row[flat(at)] = 1;
-                }
-                block_hot_lo[b] = hot_lo_b;
-                block_hot_hi[b] = hot_hi_b;
-            });
-            GIMLET_OMP(barrier)
-            GIMLET_OMP(single)
-            {
-                vector hot_lo = x[hottest], hot_hi = x[hottest];
-                for (std::size_t b = 0; b < blocks; ++b)
-                    hot_lo = hot_lo.cwiseMin(block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(block_hot_hi[b]);
-                try {
-                    keep_bin.assign(total, 0);
-                    try_bin.assign(total, 0);
-                    prepare(hot_lo, hot_hi);
-                    // Each hot bin marks the bins within two (kept) and one (tried).
-                    std::array<std::size_t, dim> from{}, to{};
-                    for (int d = 0; d < dim; ++d) from[d] = bin_of(hot_lo, d), to[d] = bin_of(hot_hi, d);
-                    for_cells(from, to, [&](const std::array<std::size_t, dim>& h) {
-                        bool hot = false;
-                        for (std::size_t b = 0; b < blocks; ++b) hot = hot || hot_bin[b * total + flat(h)];
-                        if (!hot) return;
-                        std::array<std::size_t, dim> a{}, z{};
-                        for (int d = 0; d < dim; ++d) a[d] = h[d] >= 2 ? h[d] - 2 : 0, z[d] = std::min(h[d] + 2, bins[d] - 1);
-                        for_cells(a, z, [&](const std::array<std::size_t, dim>& k) { keep_bin[flat(k)] = 1; });
-                        for (int d = 0; d < dim; ++d) a[d] = h[d] >= 1 ? h[d] - 1 : 0, z[d] = std::min(h[d] + 1, bins[d] - 1);
-                        for_cells(a, z, [&](const std::array<std::size_t, dim>& k) { try_bin[flat(k)] = 1; });
-                    });
-                } catch (...) {
-                    go = false;
-                    failed = std::current_exception();
-                }
-            }
-        }
-        if (go) {  // the same for every thread: written before the barrier that ends `single`
-            detail::for_each_block_of(*count_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-                std::size_t* count = cursor.data() + b * total;
-                double* t_max = block_max.data() + b * total;
-                for (std::size_t i = first; i < last; ++i) {
-                    bool kept = true;
-                    for (int d = 0; d < dim; ++d) {
-                        const double from_lo = double(x[i][d] - lo[d]);  // what bin_of divides
-                        kept = kept && from_lo >= keep_from[d] && from_lo <= keep_to[d];
-                    }
-                    if (kept)
-                        for (int d = 0; d < dim; ++d) {
-                            cell[i][d] = bin_of(x[i], d);
-                            kept = kept && cell[i][d] >= keep_lo[d] && cell[i][d] <= keep_hi[d];
-                        }
-                    if (kept) bin[i] = flat(cell[i]);
-                    if (!kept || (refine && !keep_bin[bin[i]])) {
-                        bin[i] = total;  // not sorted: no disc that is sought reaches it
-                        continue;
-                    }
-                    ++count[bin[i]];
-                    t_max[bin[i]] = std::max(t_max[bin[i]], double(T[i]));
-                }
-            });
-            GIMLET_OMP(barrier)
-            GIMLET_OMP(single)
-            {
-                detail::block_offsets(cursor, sort_blocks, total, start);
-            }
-            // The copies in bin order, and each bin's hottest particle: the blocks' maxima (a
-            // maximum, whatever the blocks), in the first block's entries, the bins split
-            // between the threads where there are many. No barrier between the two: the copies
-            // write `sorted_*` and each block's row of `cursor`, the merge only the first row
-            // of `block_max`, reading the others.
-            detail::for_each_block_of(*copy_pass, n, sort_blocks, [&](std::size_t b, std::size_t first, std::size_t last) {
-                std::size_t* at = cursor.data() + b * total;
-                for (std::size_t i = first; i < last; ++i) {
-                    if (bin[i] == total) continue;
-                    const std::size_t j = at[bin[i]]++;
-                    sorted_x[j] = x[i];
-                    sorted_m[j] = double(m[i]);
-                    sorted_T[j] = double(T[i]);
-                    sorted_index[j] = i;
-                }
-            });
-            detail::for_each_block_of(*merge_pass, total, merge_blocks, [&](std::size_t, std::size_t first, std::size_t last) {
-                for (std::size_t b = 1; b < sort_blocks; ++b)
-                    for (std::size_t k = first; k < last; ++k) block_max[k] = std::max(block_max[k], block_max[b * total + k]);
-            });
-            GIMLET_OMP(barrier)
-            // A centre whose bins' hottest particle is cooler than the disc around the hottest
-            // particle (or than `above`, whichever is hotter: the floor) cannot hold the
-            // hottest disc, since its mean is at most that particle's temperature, exactly
-            // (above). Nor where that particle is as hot as the floor and the centre comes
-            // after the hottest particle, whose own disc is then tried and would win the tie.
-            // So where a disc hotter than `above` exists (always, with no `above`), the result
-            // is that of trying every centre, at O(n) cost where the hot
-            // material is small, and where the temperatures are uniform (before a hot spot
-            // forms) every centre after the hottest particle is skipped. The hottest
-            // particle's disc is summed once and its bits reused in the loop, so the floor and
-            // that disc are the same number whatever the compiler does with the two call sites.
-            GIMLET_OMP(single)
-            {
-                hottest_mean = disc(hottest, bound_at(hottest), hottest_count);
-                floor = std::max(hottest_mean, wanted);
-            }
-            // The centres are tried on demand in small chunks, not in the solver's shares
-            // (detail::thread_shares): a centre's cost varies a hundredfold (most are skipped,
-            // a hot one sums its disc), and the centres are visited once a call, so there is no
-            // data to keep near a core; the hottest disc is the same whoever tries it.
-            // Only the kept particles in the bins tried are centres: any other centre's bins
-            // hold no particle hotter than `wanted`, so its disc is not sought. (The order the
-            // centres are tried in does not matter: the result is a maximum in a total order.)
-            best_disc local;
-            const auto kept = static_cast<std::ptrdiff_t>(start[total]);
-            GIMLET_OMP(for schedule(dynamic, 256) nowait)
-            for (std::ptrdiff_t k = 0; k < kept; ++k) {
-                const std::size_t i = sorted_index[std::size_t(k)];
-                bool tried = true;
-                for (int d = 0; d < dim; ++d) tried = tried && cell[i][d] >= try_lo[d] && cell[i][d] <= try_hi[d];
-                if (!tried || (refine && !try_bin[bin[i]])) continue;
-                const double bound = bound_at(i);
-                if (bound < floor || (bound == floor && i > hottest)) continue;
-                std::size_t count = hottest_count;
-                const double mean = i == hottest ? hottest_mean : disc(i, bound, count);
-                if (local.beaten_by(mean, i)) local = {mean, i, count, true};
-            }
-            GIMLET_OMP(critical(gimlet_hot_spot))
-            if (local.found && best.beaten_by(local.mean, local.index)) best = local;
-        }
-    }
-    if (failed) std::rethrow_exception(failed);
-    if (hottest == none) return r;  // none, as the result's defaults say
-    r.max_temperature = double(T[hottest]);
-    r.temperature = best.mean;
-    if (best.found) {
-        r.centre = x[best.index];
-        r.particles = best.count;
-    }
-    return r;
+    return detail::hot_spot_search<Solver>(s, radius, above, work).run();
 }
 
 /// hot_spot with scratch of its own (see hot_spot_workspace).
@@ -581,10 +655,10 @@ template <class Solver>
     // consecutive particles each, with their current volumes; the sums then run over them in
     // particle order, as the serial pass summed them.
     const std::size_t n = store.size();
-    const int threads = detail::threads_of(s);
-    const std::size_t blocks = detail::observer_blocks(n, threads);
+    const int threads = gimlet::detail::threads_of(s);
+    const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
     std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, det(F) V0)
-    detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+    gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i)
             if (std::any_of(temperatures.begin(), temperatures.end(), [&](double t) { return double(T[i]) > t; }))
                 hot[b].push_back({i, double(F[i].determinant()) * double(v0[i])});
