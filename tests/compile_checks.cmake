@@ -28,7 +28,8 @@ endif()
 #   material                                   a material: one policy of each constitutive family
 #   scene                                      bodies of materials on a grid
 #   solver                                     the composed solver and its parts
-#   materials diagnostics io                   presets, measurements, files
+#   presets diagnostics io                     presets, measurements, files
+#   materials                                  the former name of presets/, forwarding to it
 set(GIMLET_LAYERS
     "core:core"
     "shape:core,shape"
@@ -41,7 +42,8 @@ set(GIMLET_LAYERS
     "material:core,strength,eos,thermal,viscosity,material"
     "scene:core,strength,eos,thermal,viscosity,material,scene"
     "solver:core,shape,strength,eos,thermal,viscosity,contact,multi_field,material,scene,solver"
-    "materials:core,strength,eos,thermal,viscosity,material,materials"
+    "presets:core,strength,eos,thermal,viscosity,material,presets"
+    "materials:core,strength,eos,thermal,viscosity,material,presets,materials"
     "diagnostics:core,diagnostics"
     "io:core,io")
 

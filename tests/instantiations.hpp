@@ -13,7 +13,7 @@
 #include <type_traits>
 
 /// The list: ELASTIC(contact, partition) and HMX(contact, partition) name a 2-D double uGIMP
-/// solver of gimlet::elastic_material or of gimlet::materials::hmx_material<> (its defaults).
+/// solver of gimlet::elastic_material or of gimlet::presets::hmx_material<> (its defaults).
 /// Two macro arguments, so that each of the two defining files can take its half of the list.
 #define GIMLET_TESTS_SHARED_SOLVERS(ELASTIC, HMX)                                                \
     ELASTIC(single_field, by_body)                                                                \
@@ -48,13 +48,13 @@
 
 #define GIMLET_TESTS_EXTERN_ELASTIC(C, P) extern template class GIMLET_TESTS_SOLVER_TYPE(gimlet::elastic_material, C, P);
 #define GIMLET_TESTS_EXTERN_HMX(C, P) \
-    extern template class GIMLET_TESTS_SOLVER_TYPE(gimlet::materials::hmx_material<>, C, P);
+    extern template class GIMLET_TESTS_SOLVER_TYPE(gimlet::presets::hmx_material<>, C, P);
 GIMLET_TESTS_SHARED_SOLVERS(GIMLET_TESTS_EXTERN_ELASTIC, GIMLET_TESTS_EXTERN_HMX)
 #undef GIMLET_TESTS_EXTERN_ELASTIC
 #undef GIMLET_TESTS_EXTERN_HMX
 #define GIMLET_TESTS_EXTERN_ELASTIC(C, P) extern template class GIMLET_TESTS_CORE_TYPE(gimlet::elastic_material, C, P);
 #define GIMLET_TESTS_EXTERN_HMX(C, P) \
-    extern template class GIMLET_TESTS_CORE_TYPE(gimlet::materials::hmx_material<>, C, P);
+    extern template class GIMLET_TESTS_CORE_TYPE(gimlet::presets::hmx_material<>, C, P);
 GIMLET_TESTS_SHARED_CORES(GIMLET_TESTS_EXTERN_ELASTIC, GIMLET_TESTS_EXTERN_HMX)
 #undef GIMLET_TESTS_EXTERN_ELASTIC
 #undef GIMLET_TESTS_EXTERN_HMX
@@ -63,7 +63,7 @@ GIMLET_TESTS_SHARED_CORES(GIMLET_TESTS_EXTERN_ELASTIC, GIMLET_TESTS_EXTERN_HMX)
 // every unit that uses it).
 namespace gimlet_tests_instantiations {
 #define GIMLET_TESTS_CORE_ELASTIC(C, P) GIMLET_TESTS_CORE_TYPE(gimlet::elastic_material, C, P),
-#define GIMLET_TESTS_CORE_HMX(C, P) GIMLET_TESTS_CORE_TYPE(gimlet::materials::hmx_material<>, C, P),
+#define GIMLET_TESTS_CORE_HMX(C, P) GIMLET_TESTS_CORE_TYPE(gimlet::presets::hmx_material<>, C, P),
 template <class... T>
 struct type_list {};
 using shared_cores = type_list<GIMLET_TESTS_SHARED_CORES(GIMLET_TESTS_CORE_ELASTIC, GIMLET_TESTS_CORE_HMX) void>;
@@ -78,7 +78,7 @@ constexpr bool listed(type_list<Listed...>*) {
                       static_cast<shared_cores*>(nullptr)),                                          \
                   "tests/instantiations.hpp: add the core of ELASTIC(" #C ", " #P ") to the cores' list");
 #define GIMLET_TESTS_LISTED_HMX(C, P)                                                                \
-    static_assert(listed<GIMLET_TESTS_SOLVER_TYPE(gimlet::materials::hmx_material<>, C, P)::core_type>( \
+    static_assert(listed<GIMLET_TESTS_SOLVER_TYPE(gimlet::presets::hmx_material<>, C, P)::core_type>( \
                       static_cast<shared_cores*>(nullptr)),                                          \
                   "tests/instantiations.hpp: add the core of HMX(" #C ", " #P ") to the cores' list");
 GIMLET_TESTS_SHARED_SOLVERS(GIMLET_TESTS_LISTED_ELASTIC, GIMLET_TESTS_LISTED_HMX)

@@ -23,7 +23,7 @@
 namespace cavity_collapse {
 
 using S = gimlet::space<2>;
-using material = gimlet::materials::hmx_material<>;
+using material = gimlet::presets::hmx_material<>;
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
 constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's sides
@@ -105,13 +105,13 @@ private:
 static_assert(gimlet::contact::Law<chosen_law>);
 
 /// thermal::isentrope_temperature (the default) or the paper's Walsh-Christian temperature
-/// (materials::paper_temperature, --temperature paper), both built from the same constants.
+/// (presets::paper_temperature, --temperature paper), both built from the same constants.
 class chosen_temperature {
 public:
     static constexpr bool enabled = true;
     using required_fields = gimlet::field_list<gimlet::fields::temperature>;
 
-    /// The arguments materials::make_hmx gives a thermal policy; the isentrope's until use_paper(true).
+    /// The arguments presets::make_hmx gives a thermal policy; the isentrope's until use_paper(true).
     chosen_temperature(double density0, double sound_speed, double slope, double gruneisen, double specific_heat,
                        double initial_temperature)
         : isentrope_(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature),
@@ -132,7 +132,7 @@ public:
     }
     /// The reference isentrope's energy, which the volume filter moves the energy along: the
     /// paper's temperature has none, and validate() refuses the filter with it (as the solver
-    /// refuses it for materials::paper_temperature).
+    /// refuses it for presets::paper_temperature).
     [[nodiscard]] double reference_energy(double j) const {
         if (paper_on_)
             throw std::logic_error("cavity_collapse::chosen_temperature: the volume filter with the paper's "
@@ -148,14 +148,14 @@ public:
 
 private:
     gimlet::thermal::isentrope_temperature isentrope_;
-    gimlet::materials::paper_temperature paper_;
+    gimlet::presets::paper_temperature paper_;
     bool paper_on_ = false;
 };
 static_assert(gimlet::thermal::Thermal<chosen_temperature>);
 
 /// The binary's material: HMX with the temperature --temperature chose (make_scene sets it).
 using run_material =
-    gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy, chosen_temperature>;
+    gimlet::presets::hmx_material<gimlet::eos::energy_reference::internal_energy, chosen_temperature>;
 
 // The lower block is body 0, the upper block body 1.
 inline double interface_y() { return height + 0.5 * gap; }
@@ -211,7 +211,7 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, M> scene(gs);
-    auto hmx = gimlet::materials::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
+    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
         {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
     if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
         hmx.thermal.use_paper(s.paper_temperature);
@@ -249,7 +249,7 @@ struct cavity_state {
 inline constexpr std::size_t hot_levels = 5;
 inline constexpr std::array<double, hot_levels> hot_excess = {50, 100, 200, 400, 800};
 inline double bulk_shock_temperature(double velocity) {
-    return example::hugoniot_temperature(example::rankine_hugoniot(gimlet::materials::make_hmx(), velocity));
+    return example::hugoniot_temperature(example::rankine_hugoniot(gimlet::presets::make_hmx(), velocity));
 }
 
 // One row of series.csv.

@@ -104,7 +104,7 @@ hugoniot_state rankine_hugoniot(const Material& m, double v) {
 // The temperature of a Rankine-Hugoniot state on the EOS's own thermodynamics: T(V, e_th)
 // from the reference isentrope (thermal::isentrope_temperature), with e_th the energy less the
 // stored shear energy s:s/(4 G rho) = Y^2/(6 G rho) of the yielded deviator.
-inline double hugoniot_temperature(const hugoniot_state& rh, const gimlet::materials::hmx_constants& c = {}) {
+inline double hugoniot_temperature(const hugoniot_state& rh, const gimlet::presets::hmx_constants& c = {}) {
     const double g = gimlet::elastic_moduli::from_young_poisson(c.young, c.poisson).shear;
     const double rho = c.density / (1.0 - rh.eta);
     const gimlet::thermal::isentrope_temperature th(c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
@@ -114,7 +114,7 @@ inline double hugoniot_temperature(const hugoniot_state& rh, const gimlet::mater
 
 // The plastic work of uniaxial strain from the elastic limit to eta, as kelvin of heating:
 // 2 Y (eta - eta_HEL) / (3 rho0 c_v) (perfect plasticity, small strains).
-inline double uniaxial_plastic_heat(const hugoniot_state& rh, const gimlet::materials::hmx_constants& c = {}) {
+inline double uniaxial_plastic_heat(const hugoniot_state& rh, const gimlet::presets::hmx_constants& c = {}) {
     return 2.0 * c.yield_stress * std::max(0.0, rh.eta - rh.eta_hel) / (3.0 * c.density * c.specific_heat);
 }
 

@@ -16,7 +16,7 @@
 namespace contact_validation {
 
 using S = gimlet::space<2>;
-using material = gimlet::materials::hmx_material<>;
+using material = gimlet::presets::hmx_material<>;
 
 struct settings {
     double velocity = 300.0;  // m/s, each block
@@ -79,7 +79,7 @@ inline gimlet::scene::scene<S, material> make_scene(const settings& s) {
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, material> scene(gs);
     const auto hmx =
-        gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
+        gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
     scene.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, height)), hmx,
                    S::vector(0.0, s.velocity), 2, "lower block");
     scene.add_body(gimlet::scene::box<S>(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap)), hmx,

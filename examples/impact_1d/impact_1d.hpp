@@ -20,7 +20,7 @@
 namespace impact_1d {
 
 using S = gimlet::space<2>;
-using material = gimlet::materials::hmx_material<>;
+using material = gimlet::presets::hmx_material<>;
 template <class M = material, class C = gimlet::contact::single_field>
 using solver_for = gimlet::solver<S, gimlet::shape::ugimp, M, C>;
 using solver = solver_for<>;
@@ -51,7 +51,7 @@ using example::uniaxial_plastic_heat;
 // ---- the scene and the measurements --------------------------------------------------------
 
 template <class M = material, class C = gimlet::contact::single_field>
-solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
+solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::presets::make_hmx()) {
     gimlet::require(std::isfinite(s.velocity) && s.velocity > 0 && s.velocity <= 1000, "velocity (m/s)", s.velocity,
                     "(0, 1000]");
     gimlet::require(std::isfinite(s.cell) && s.cell > 0 && s.cell <= 1e-3, "cell size (m)", s.cell, "(0, 1e-3]");
@@ -127,10 +127,10 @@ struct result {
 // predicted plateau; its speed is a least-squares fit over the second half of the run, plus
 // the velocity of the material ahead of it.
 template <class M = material, class C = gimlet::contact::single_field>
-result run(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
+result run(const settings& s, const M& mat = gimlet::presets::make_hmx()) {
     auto sol = make_solver<M, C>(s, mat);
     result r;
-    r.rh = rankine_hugoniot(gimlet::materials::make_hmx(), s.velocity);
+    r.rh = rankine_hugoniot(gimlet::presets::make_hmx(), s.velocity);
     r.rh_temperature = hugoniot_temperature(r.rh);
     r.rh_plastic_heat = uniaxial_plastic_heat(r.rh);
     const double e0 = gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol);
@@ -169,7 +169,7 @@ result run(const settings& s, const M& mat = gimlet::materials::make_hmx()) {
                 r.plateau_temperature += p.template get<gimlet::fields::temperature>();
             if constexpr (store::template has<gimlet::fields::plastic_work>)
                 r.plateau_plastic_heat += p.template get<gimlet::fields::plastic_work>() /
-                                          gimlet::materials::hmx_constants{}.specific_heat;
+                                          gimlet::presets::hmx_constants{}.specific_heat;
             n += 1;
         }
     }

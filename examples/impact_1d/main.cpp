@@ -60,7 +60,7 @@ int main(int argc, char** argv) try {
     const auto out = args.directory("output", "results/impact_1d");
     args.finish();
 
-    const auto mat = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(mv.viscosity_quadratic, mv.viscosity_linear));
+    const auto mat = gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(mv.viscosity_quadratic, mv.viscosity_linear));
     const auto r = contact == "distance"
                        ? impact_1d::run<impact_1d::material, gimlet::contact::distance>(s, mat)
                        : impact_1d::run(s, mat);

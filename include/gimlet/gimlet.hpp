@@ -35,10 +35,11 @@
 #include "gimlet/io/pvd.hpp"
 #include "gimlet/io/vtk.hpp"
 #include "gimlet/material/check.hpp"
-#include "gimlet/materials/hmx.hpp"
+#include "gimlet/materials/hmx.hpp"  // the former name of presets/, for one release
 #include "gimlet/multi_field/check.hpp"
 #include "gimlet/multi_field/partition.hpp"
 #include "gimlet/multi_field/self_contact.hpp"
+#include "gimlet/presets/hmx.hpp"
 #include "gimlet/scene/check.hpp"
 #include "gimlet/scene/geometry.hpp"
 #include "gimlet/scene/scene.hpp"

@@ -694,8 +694,8 @@ TEMPLATE_LIST_TEST_CASE("contact keeps HMX blocks from interpenetrating in a 300
     st.margin = 8;
     st.v_lower = vec(0, 300);
     st.v_upper = vec(0, 0);
-    using M = gimlet::materials::hmx_material<>;
-    const auto sc = two_blocks<M>(st, gimlet::materials::make_hmx());
+    using M = gimlet::presets::hmx_material<>;
+    const auto sc = two_blocks<M>(st, gimlet::presets::make_hmx());
     auto sol = make_solver<TestType>(sc);
     const double c_l = sol.wave_speed(sol.particles()[0]);
     const double T = 2 * st.length * st.h / c_l;

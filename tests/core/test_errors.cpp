@@ -152,13 +152,13 @@ TEST_CASE("numerical trouble names particle, position and step", "[core][errors]
         // The fuzzer's input, as it found it: a specific heat of 1.5e-315 J/(kg K) is positive and
         // finite, so it is accepted, and the first step's heating made the temperature infinite
         // while every core field stayed finite.
-        using hmx = gimlet::materials::hmx_material<>;
+        using hmx = gimlet::presets::hmx_material<>;
         gimlet::grid_spec<S> gs;
         gs.lower = S::vector(-0x1.999999999999ap-5, -0x1.2fd2c96c6306p-5);
         gs.upper = S::vector(-0x1.98c7e28240b78p-5, -0x1.2f0112550a23ep-5);
         gs.cell = 0x1.a36e2eb1c432dp-14;
         gs.bc = {gimlet::boundary::wall, gimlet::boundary::wall};
-        gimlet::materials::hmx_constants c;
+        gimlet::presets::hmx_constants c;
         c.density = 0x1.b0b8787878788p+12;
         c.young = 1e6;
         c.poisson = 0;
@@ -170,7 +170,7 @@ TEST_CASE("numerical trouble names particle, position and step", "[core][errors]
         gimlet::scene::scene<S, hmx> sc(gs);
         sc.add_body(gimlet::scene::box<S>(S::vector(-0x1.996294a23b814p-5, -0x1.2f9bc47504edap-5),
                                           S::vector(-0x1.9928b6b640514p-5, -0x1.2f61e68909bdap-5)),
-                    gimlet::materials::make_hmx(c), S::vector(-0x1.ffc3c3c3c3c3cp+9, -0x1.ffc3c3c3c3c3cp+9), 4);
+                    gimlet::presets::make_hmx(c), S::vector(-0x1.ffc3c3c3c3c3cp+9, -0x1.ffc3c3c3c3c3cp+9), 4);
         gimlet::solver_options<S> opt;
         opt.cfl = 0x1.999999999999ap-5;
         opt.mass_cutoff = 0;

@@ -76,14 +76,14 @@ TEST_CASE("float: light particles return their momentum exactly", "[core][float]
 }
 
 TEST_CASE("float: an HMX impact with plasticity, the EOS, viscosity and temperature", "[core][float]") {
-    using hmx = gimlet::materials::hmx_material<>;
+    using hmx = gimlet::presets::hmx_material<>;
     gimlet::grid_spec<F> gs;
     gs.lower = F::vector(0.0f, -6e-3f);
     gs.upper = F::vector(2e-3f, 6e-3f);
     gs.cell = 0.5e-3f;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<F, hmx> sc(gs);
-    const auto m = gimlet::materials::make_hmx();
+    const auto m = gimlet::presets::make_hmx();
     sc.add_body(gimlet::scene::box<F>(F::vector(0.0f, 0.0f), F::vector(2e-3f, 4e-3f)), m, F::vector(0.0f, -300.0f), 2);
     sc.add_body(gimlet::scene::box<F>(F::vector(0.0f, -4e-3f), F::vector(2e-3f, 0.0f)), m, F::vector(0.0f, 300.0f), 2);
     gimlet::solver_options<F> opt;

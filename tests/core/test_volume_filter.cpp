@@ -18,7 +18,7 @@
 namespace {
 
 using S = gimlet::space<2>;
-using material = gimlet::materials::hmx_material<>;
+using material = gimlet::presets::hmx_material<>;
 using solver = gimlet::solver<S, gimlet::shape::ugimp, material>;
 
 constexpr double excess = 100.0;  // J/kg of thermal energy above the reference isentrope
@@ -34,7 +34,7 @@ solver block(bool filter, JOf j_of, bool partial = false) {
     gs.cell = 1e-3;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
     gimlet::scene::scene<S, material> sc(gs);
-    const auto hmx = gimlet::materials::make_hmx();
+    const auto hmx = gimlet::presets::make_hmx();
     const S::vector lo = partial ? S::vector(1e-3, 1e-3) : gs.lower, hi = partial ? S::vector(7e-3, 7e-3) : gs.upper;
     sc.add_body(gimlet::scene::box<S>(lo, hi), hmx, S::vector::Zero(), 2, "block");
     gimlet::solver_options<S> opt;
@@ -92,7 +92,7 @@ TEST_CASE("volume filter: a uniform state is left as it is", "[core][volume_filt
 TEST_CASE("volume filter: a row pattern the grid cannot see goes, the energy stays", "[core][volume_filter]") {
     auto rows = [](std::size_t, const S::vector& x) { return std::fmod(std::floor(x[1] / 0.5e-3), 2.0) == 0 ? 0.94 : 0.96; };
     auto sol = block(true, rows);
-    const auto hmx = gimlet::materials::make_hmx();
+    const auto hmx = gimlet::presets::make_hmx();
     const double e0 = internal_energy(sol);
     sol.step(1e-12);  // the filter's change; the step's own work is negligible over 1e-12 s
     const auto& ps = sol.particles();
@@ -129,7 +129,7 @@ TEST_CASE("volume filter: a random J field on a block with free surfaces", "[cor
         x ^= x >> 31;
         return 0.93 + 0.04 * double(x >> 11) / double(1ULL << 53);
     };
-    const auto hmx = gimlet::materials::make_hmx();
+    const auto hmx = gimlet::presets::make_hmx();
     auto spread = [](const solver& sol) {
         const auto& ps = sol.particles();
         double sum = 0, sum2 = 0;

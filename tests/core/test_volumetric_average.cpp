@@ -99,7 +99,7 @@ TEST_CASE("volumetric average: results do not depend on the thread count", "[cor
         s.end_time = 0.5e-6;
         s.volumetric_average = true;
         s.threads = threads;
-        const auto hmx = gimlet::materials::make_hmx();
+        const auto hmx = gimlet::presets::make_hmx();
         auto sol = impact_1d::make_solver(s, hmx);
         sol.run_until(s.end_time);
         const auto& ps = sol.particles();

@@ -16,7 +16,7 @@
 namespace {
 
 using S = gimlet::space<2>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
 using gimlet::fields::position, gimlet::fields::velocity, gimlet::fields::temperature;
 
@@ -34,7 +34,7 @@ gimlet::grid_spec<S> grid() {
 // Two blocks 3 mm apart (faces on grid lines, so every lattice fills them exactly); the lower one with a cavity of radius 4 mm at (10, 8) mm.
 solver two_blocks(int ppc_lower, int ppc_upper) {
     gimlet::scene::scene<S, hmx> sc(grid());
-    const auto mat = gimlet::materials::make_hmx();
+    const auto mat = gimlet::presets::make_hmx();
     using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
     sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
                 mat, S::vector::Zero(), ppc_lower, "lower");
@@ -46,7 +46,7 @@ solver two_blocks(int ppc_lower, int ppc_upper) {
 // on the threads), as three solvers on 1, 2 and 3 threads.
 std::vector<solver> on_1_2_3_threads() {
     gimlet::scene::scene<S, hmx> sc(grid());
-    const auto mat = gimlet::materials::make_hmx();
+    const auto mat = gimlet::presets::make_hmx();
     using gimlet::scene::box, gimlet::scene::ball, gimlet::scene::difference;
     sc.add_body(difference(box<S>(S::vector(0.0, 2e-3), S::vector(20e-3, 15e-3)), ball<S>(S::vector(10e-3, 8e-3), 4e-3)),
                 mat, S::vector::Zero(), 4, "lower");

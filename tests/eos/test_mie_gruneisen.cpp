@@ -18,9 +18,9 @@ namespace {
 using S = gimlet::space<2>;
 using mg_standard = gimlet::eos::mie_gruneisen<gimlet::eos::energy_reference::internal_energy>;
 using mg_paper = gimlet::eos::mie_gruneisen<gimlet::eos::energy_reference::plastic_work>;
-using hmx_mat = gimlet::materials::hmx_material<>;
+using hmx_mat = gimlet::presets::hmx_material<>;
 
-const gimlet::materials::hmx_constants hmx{};
+const gimlet::presets::hmx_constants hmx{};
 const double rho0 = hmx.density, c0 = hmx.sound_speed, s = hmx.slope, Gamma = hmx.gruneisen;
 const double K0 = rho0 * c0 * c0;  // 14.26 GPa
 
@@ -125,7 +125,7 @@ TEST_CASE("Mie-Grueneisen: continuous at eta = 0, and K = rho0 c0^2 at rest", "[
     CHECK(eos.bulk_modulus(gimlet::point_state<double>{1.0, rho0, rho0}, p) == K0);
 
     // The longitudinal wave speed of HMX at rest: sqrt((rho0 c0^2 + 4G/3) / rho0) = 3292 m/s.
-    const hmx_mat mat = gimlet::materials::make_hmx();
+    const hmx_mat mat = gimlet::presets::make_hmx();
     const double G = mat.strength.shear_modulus();
     const double c_expected = std::sqrt((K0 + 4 * G / 3) / rho0);
     const double c = gimlet::longitudinal_wave_speed(p, mat);
@@ -236,7 +236,7 @@ TEST_CASE("Mie-Grueneisen: the singularity at eta = 1/s stops with a clear error
     auto q = store[store.add()];
     q.get<gimlet::fields::volume0>() = 1e-6;
     q.get<gimlet::fields::mass>() = rho0 * 1e-6;
-    const hmx_mat mat = gimlet::materials::make_hmx();
+    const hmx_mat mat = gimlet::presets::make_hmx();
     mat.thermal.initialize(q);
     S::matrix L = S::matrix::Zero();
     L(1, 1) = -1e5;  // 1e-3 strain per step of 1e-8 s

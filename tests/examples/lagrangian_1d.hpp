@@ -57,7 +57,7 @@ struct model {
     gimlet::thermal::isentrope_temperature th;
     double gruneisen_rho0;  // Gamma rho0: Gamma rho = gruneisen_rho0 / J
 
-    explicit model(const gimlet::materials::hmx_constants& c)
+    explicit model(const gimlet::presets::hmx_constants& c)
         : eos{c.density, c.sound_speed, c.slope, c.gruneisen},
           th{c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat, c.temperature},
           gruneisen_rho0(c.gruneisen * c.density) {}
@@ -76,7 +76,7 @@ inline double median(std::vector<double>& v) {
 
 // The strengthless Rankine-Hugoniot state of the symmetric impact at v (U_s = c0 + s u_p, u_p = v):
 // its theta = T_H / T_s(J_H), which an isentropic release keeps.
-inline double hugoniot_theta(double v, const gimlet::materials::hmx_constants& c = {}) {
+inline double hugoniot_theta(double v, const gimlet::presets::hmx_constants& c = {}) {
     const model md(c);
     const double eta = v / (c.sound_speed + c.slope * v), j = 1.0 - eta;
     return md.th.temperature(j, 0.5 * v * v) / md.th.isentrope(j);  // e_H = u_p^2 / 2
@@ -85,7 +85,7 @@ inline double hugoniot_theta(double v, const gimlet::materials::hmx_constants& c
 // T - T0 after an isentropic release from that state to P = 0: on the isentrope theta = theta_H,
 // T = theta_H T_s(J) and e = e_s(J) + c_v (T - T_s(J)); P(J, e) = 0 solved for J by bisection
 // (P falls as J grows there).
-inline double isentropic_release_heating(double v, const gimlet::materials::hmx_constants& c = {}) {
+inline double isentropic_release_heating(double v, const gimlet::presets::hmx_constants& c = {}) {
     const model md(c);
     const double theta = hugoniot_theta(v, c);
     auto pressure = [&](double j) {
@@ -100,7 +100,7 @@ inline double isentropic_release_heating(double v, const gimlet::materials::hmx_
 
 // Runs to the last of `times` (s, increasing) and returns one sample at each.
 inline std::vector<sample> run(const settings& s, const std::vector<double>& times,
-                               const gimlet::materials::hmx_constants& c = {}) {
+                               const gimlet::presets::hmx_constants& c = {}) {
     const model md(c);
     const int n = s.cells;
     const double dx0 = s.length / n, rho0 = c.density, m = rho0 * dx0;

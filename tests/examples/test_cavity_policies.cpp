@@ -41,7 +41,7 @@ struct point {
 // A compression step with plastic work, from the initial state.
 template <class Thermal>
 std::uint64_t after_step(const Thermal& thermal) {
-    const gimlet::materials::hmx_constants c{};
+    const gimlet::presets::hmx_constants c{};
     point pt;
     thermal.initialize(pt.p());
     pt.p().get<gimlet::fields::specific_internal_energy>() = 5.0e4;  // above e_s(0.93), about 2.7e4 J/kg
@@ -77,10 +77,10 @@ TEST_CASE("cavity_collapse's chosen law answers as the law --contact names", "[e
 }
 
 TEST_CASE("cavity_collapse's chosen temperature is the isentrope's or the paper's, to the bit", "[examples]") {
-    const gimlet::materials::hmx_constants c{};
+    const gimlet::presets::hmx_constants c{};
     const gimlet::thermal::isentrope_temperature isentrope(c.density, c.sound_speed, c.slope, c.gruneisen,
                                                            c.specific_heat, c.temperature);
-    const gimlet::materials::paper_temperature paper(c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
+    const gimlet::presets::paper_temperature paper(c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat,
                                                      c.temperature);
     chosen_temperature chosen(c.density, c.sound_speed, c.slope, c.gruneisen, c.specific_heat, c.temperature);
     // The two forms differ after this step (the paper's adds the plastic work, the isentrope's

@@ -46,7 +46,7 @@ using strengthless = gimlet::material<gimlet::strength::none, gimlet::eos::mie_g
                                       gimlet::thermal::isentrope_temperature, gimlet::viscosity::bulk>;
 
 strengthless make_strengthless(const gimlet::viscosity::bulk& viscosity) {
-    const gimlet::materials::hmx_constants c{};
+    const gimlet::presets::hmx_constants c{};
     return {c.density,
             gimlet::strength::none{},
             gimlet::eos::mie_gruneisen<>{c.density, c.sound_speed, c.slope, c.gruneisen},

@@ -16,7 +16,7 @@
 namespace {
 
 using S = gimlet::space<2>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using hmx_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
 
 // Two HMX blocks of 1.5 x 0.5 mm, 0.5 mm apart at +-300 m/s, 0.5 mm cells, one particle per cell
@@ -29,7 +29,7 @@ const hmx_solver& prototype() {
         gs.cell = 0.5e-3;
         gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
         gimlet::scene::scene<S, hmx> sc(gs);
-        const auto mat = gimlet::materials::make_hmx();
+        const auto mat = gimlet::presets::make_hmx();
         sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(1.5e-3, 0.5e-3)), mat, S::vector(0.0, 300.0), 1);
         sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 1e-3), S::vector(1.5e-3, 1.5e-3)), mat, S::vector(0.0, -300.0), 1);
         gimlet::solver_options<S> opt;

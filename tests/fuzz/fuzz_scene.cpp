@@ -24,7 +24,7 @@ namespace {
 
 using S = gimlet::space<2>;
 using V = S::vector;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 namespace f = gimlet::fields;
 
 constexpr double max_nodes = 4096, max_particles = 4096;
@@ -33,7 +33,7 @@ constexpr int max_steps = 5;
 struct body_params {
     V lower, upper, velocity;
     int ppc;
-    gimlet::materials::hmx_constants c;
+    gimlet::presets::hmx_constants c;
 };
 
 template <class Contact>
@@ -133,7 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::expect_clean([&] {
         gimlet::scene::scene<S, hmx> sc(gs);
         for (const auto& b : bodies)
-            sc.add_body(gimlet::scene::box<S>(b.lower, b.upper), gimlet::materials::make_hmx(b.c), b.velocity, b.ppc);
+            sc.add_body(gimlet::scene::box<S>(b.lower, b.upper), gimlet::presets::make_hmx(b.c), b.velocity, b.ppc);
         if (distance) run<gimlet::contact::distance>(sc, opt);
         else run<gimlet::contact::single_field>(sc, opt);
     });

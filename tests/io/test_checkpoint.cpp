@@ -16,7 +16,7 @@
 
 using Catch::Matchers::Contains;
 using S = gimlet::space<2>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using hmx_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
 
 namespace {
@@ -32,9 +32,9 @@ gimlet::scene::scene<S, hmx> two_blocks(double cavity = 2e-3, double density = 1
     gs.cell = 0.5e-3;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, hmx> sc(gs);
-    gimlet::materials::hmx_constants constants;
+    gimlet::presets::hmx_constants constants;
     constants.density = density;
-    const auto mat = gimlet::materials::make_hmx(constants);
+    const auto mat = gimlet::presets::make_hmx(constants);
     sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(w, w)), mat, S::vector(0.0, 300.0), 2, "lower");
     const gimlet::scene::box<S> upper(S::vector(0.0, w + gap), S::vector(w, 2 * w + gap));
     sc.add_body(gimlet::scene::difference(upper, gimlet::scene::ball<S>(S::vector(0.5 * w, 1.5 * w + gap), cavity)),

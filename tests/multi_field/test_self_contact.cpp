@@ -32,7 +32,7 @@ using vec = S::vector;
 namespace f = gimlet::fields;
 using gimlet::multi_field::self_contact;
 using elastic = gimlet::elastic_material;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using box = gimlet::scene::box<S>;
 
 // The distance contact, counting the pairs it engages (to find the step contact begins).
@@ -237,7 +237,7 @@ auto slot(double dv, bool two_bodies, bool enabled, double cell, int consistent_
     gs.cell = cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, hmx> sc(gs);
-    const auto m = gimlet::materials::make_hmx();
+    const auto m = gimlet::presets::make_hmx();
     if (two_bodies) {
         sc.add_body(box(vec(-width / 2, -height / 2), vec(width / 2, -gap / 2)), m, vec(0, dv / 2), 2, "below");
         sc.add_body(box(vec(-width / 2, gap / 2), vec(width / 2, height / 2)), m, vec(0, -dv / 2), 2, "above");

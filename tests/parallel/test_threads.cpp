@@ -71,14 +71,14 @@ auto disks(int threads, gimlet::update_scheme scheme, int sort_interval = 0, dou
 // onto the first gets a colour of its own.
 // volume_filter: solver_options::volume_filter with two consistent-mass iterations.
 auto blocks(int threads, gimlet::update_scheme scheme, double pic_fraction = 0, bool volume_filter = false) {
-    using material = gimlet::materials::hmx_material<>;
+    using material = gimlet::presets::hmx_material<>;
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector::Zero();
     gs.upper = S::vector(0.043, 0.043);  // 43 node rows along y: 21 slabs of 2 rows, the last of 3
     gs.cell = 1e-3;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
     gimlet::scene::scene<S, material> sc(gs);
-    const auto hmx = gimlet::materials::make_hmx();
+    const auto hmx = gimlet::presets::make_hmx();
     // Touching at y = 21.5 mm and across the seam, so contact acts from the first step.
     sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(0.043, 0.0215)), hmx, S::vector(0.0, 300.0), 2,
                 "lower");
@@ -161,7 +161,7 @@ TEST_CASE("results do not depend on the thread count: self-contact in a slotted 
     // 1.7 us and self-contact (multi_field::self_contact, whose per-step passes scatter by slab)
     // splits the nodes between them. Sorted every 7 steps: the partition's field moves with its
     // particles.
-    using material = gimlet::materials::hmx_material<>;
+    using material = gimlet::presets::hmx_material<>;
     auto run = [](int threads) {
         gimlet::grid_spec<S> gs;
         gs.lower = S::vector(0.0, -0.02);
@@ -172,7 +172,7 @@ TEST_CASE("results do not depend on the thread count: self-contact in a slotted 
         using box = gimlet::scene::box<S>;
         sc.add_body(gimlet::scene::difference(box(S::vector(0.0, -0.015), S::vector(0.043, 0.015)),
                                               box(S::vector(0.005, -0.0005), S::vector(0.038, 0.0005))),
-                    gimlet::materials::make_hmx(), S::vector::Zero(), 2, "slotted block");
+                    gimlet::presets::make_hmx(), S::vector::Zero(), 2, "slotted block");
         gimlet::solver_options<S> opt;
         opt.threads = threads;
         opt.sort_interval = 7;

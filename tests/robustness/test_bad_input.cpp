@@ -18,7 +18,7 @@ using S = gimlet::space<2>;
 using elastic = gimlet::elastic_material;
 using elastic_scene = gimlet::scene::scene<S, elastic>;
 using elastic_solver = gimlet::solver<S, gimlet::shape::ugimp, elastic>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using hmx_scene = gimlet::scene::scene<S, hmx>;
 using hmx_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx>;
 
@@ -85,11 +85,11 @@ std::function<void()> with_grid(const std::function<void(gimlet::grid_spec<S>&)>
 }
 
 /// make_hmx with one constant changed.
-std::function<void()> with_hmx(const std::function<void(gimlet::materials::hmx_constants&)>& set) {
+std::function<void()> with_hmx(const std::function<void(gimlet::presets::hmx_constants&)>& set) {
     return [set] {
-        gimlet::materials::hmx_constants c;
+        gimlet::presets::hmx_constants c;
         set(c);
-        (void)gimlet::materials::make_hmx(c);
+        (void)gimlet::presets::make_hmx(c);
     };
 }
 
@@ -145,19 +145,19 @@ TEST_CASE("bad material constants are refused, naming the constant and its range
         {"EOS singularity margin", [] { mg e(1900, 2740, 2.6, 1.1, 0.0); }, "Mie-Grueneisen singularity_margin", "(0, 1)"},
         {"EOS singularity margin", [] { mg e(1900, 2740, 2.6, 1.1, 1.0); }, "Mie-Grueneisen singularity_margin", "(0, 1)"},
         {"EOS rho0 = material rho0", [] {
-             hmx m = gimlet::materials::make_hmx();
+             hmx m = gimlet::presets::make_hmx();
              m.eos = mg(1800.0, 2740, 2.6, 1.1);
              hmx_scene sc(unit_grid());
              sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
          }, "EOS reference density rho0 (kg/m^3) = 1800", "equal to the material density rho0 = 1900 kg/m^3"},
         {"thermal constants = the EOS's", [] {
-             hmx m = gimlet::materials::make_hmx();
+             hmx m = gimlet::presets::make_hmx();
              m.thermal = gimlet::thermal::isentrope_temperature(1900, 2740, 2.6, 1.3, 1250, 300);  // another Gamma
              hmx_scene sc(unit_grid());
              sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
          }, "thermal Grueneisen parameter Gamma = 1.3", "equal to the EOS's 1.1"},
         {"thermal constants = the EOS's", [] {
-             hmx m = gimlet::materials::make_hmx();
+             hmx m = gimlet::presets::make_hmx();
              m.thermal = gimlet::thermal::isentrope_temperature(1900, 2800, 2.6, 1.1, 1250, 300);  // another c0
              hmx_scene sc(unit_grid());
              sc.add_body(square(0.3, 0.7), m, S::vector::Zero());
@@ -409,14 +409,14 @@ TEST_CASE("numerical trouble stops the run, naming particle, position and step",
         // Half an HMX block at J = 0.62 (just above 1 - 1/s = 0.615), half at rest: the L2
         // projection undershoots next to the jump (to J = 0.58), which the reference isentrope
         // refuses. The filter checks every particle before it changes any.
-        using M = gimlet::materials::hmx_material<>;
+        using M = gimlet::presets::hmx_material<>;
         gimlet::grid_spec<S> gs;
         gs.lower = S::vector::Zero();
         gs.upper = S::vector(8e-3, 8e-3);
         gs.cell = 1e-3;
         gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
         gimlet::scene::scene<S, M> sc(gs);
-        const auto hmx = gimlet::materials::make_hmx();
+        const auto hmx = gimlet::presets::make_hmx();
         sc.add_body(gimlet::scene::box<S>(gs.lower, gs.upper), hmx, S::vector::Zero(), 2, "block");
         gimlet::solver_options<S> opt;
         opt.consistent_mass_iterations = 4;
@@ -476,7 +476,7 @@ TEST_CASE("numerical trouble stops the run, naming particle, position and step",
     }
     SECTION("the Mie-Grueneisen singularity") {
         hmx_scene sc(unit_grid());
-        sc.add_body(square(0.3, 0.7), gimlet::materials::make_hmx(), S::vector::Zero());
+        sc.add_body(square(0.3, 0.7), gimlet::presets::make_hmx(), S::vector::Zero());
         hmx_solver sol(sc);
         sol.step();
         // 1 - s eta = 1 - 2.6 * 0.38 = 0.012, inside the default margin 0.05.

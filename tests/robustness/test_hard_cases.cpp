@@ -30,7 +30,7 @@
 
 using Catch::Matchers::Contains;
 using S = gimlet::space<2>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 using elastic = gimlet::elastic_material;
 
 namespace {
@@ -197,7 +197,7 @@ gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact> make_strip(double velocity
     gs.cell = cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, hmx> sc(gs);
-    const auto m = gimlet::materials::make_hmx();
+    const auto m = gimlet::presets::make_hmx();
     sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, length)), m, S::vector(0.0, -velocity), 2,
                 "upper slab");
     sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -length), S::vector(width, 0.0)), m, S::vector(0.0, velocity), 2,
@@ -453,7 +453,7 @@ TEST_CASE("hard case: a block crossing hundreds of cells at high speed", "[robus
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::periodic};
     gimlet::scene::scene<S, hmx> sc(gs);
     sc.add_body(gimlet::scene::box<S>(S::vector(5.3e-3, 5.3e-3), S::vector(11.3e-3, 11.3e-3)),
-                gimlet::materials::make_hmx(), v, 2, "block");
+                gimlet::presets::make_hmx(), v, 2, "block");
     gimlet::solver<S, gimlet::shape::ugimp, hmx> sol(sc, one_thread());
     record r;
     r.name = "translation, 300 cells";
@@ -472,7 +472,7 @@ TEST_CASE("hard case: a block crossing hundreds of cells at high speed", "[robus
 
 TEST_CASE("hard case: a body touching the grid edge", "[robustness][hard]") {
     const double cell = 1e-3, side = 10e-3, v = 300;
-    const auto m = gimlet::materials::make_hmx();
+    const auto m = gimlet::presets::make_hmx();
     SECTION("fixed wall under the block's face: it hits the wall at 300 m/s") {
         gimlet::grid_spec<S> gs;
         gs.lower = S::vector::Zero();
@@ -765,7 +765,7 @@ double expansion_noise(double rate, double t_end) {
     gs.cell = cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, hmx> sc(gs);
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -half), S::vector(width, half)), gimlet::materials::make_hmx(),
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -half), S::vector(width, half)), gimlet::presets::make_hmx(),
                 S::vector::Zero(), 2, "strip");
     gimlet::solver<S, Shape, hmx> sol(sc, one_thread());
     auto& ps = sol.particles();

@@ -12,7 +12,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 using S = gimlet::space<2>;
-using hmx = gimlet::materials::hmx_material<>;
+using hmx = gimlet::presets::hmx_material<>;
 
 gimlet::solver<S, gimlet::shape::ugimp, hmx> block() {
     gimlet::grid_spec<S> gs;
@@ -20,7 +20,7 @@ gimlet::solver<S, gimlet::shape::ugimp, hmx> block() {
     gs.upper = S::vector(8e-3, 8e-3);
     gs.cell = 1e-3;
     gimlet::scene::scene<S, hmx> sc(gs);
-    sc.add_body(gimlet::scene::box<S>(S::vector(2e-3, 2e-3), S::vector(6e-3, 6e-3)), gimlet::materials::make_hmx(),
+    sc.add_body(gimlet::scene::box<S>(S::vector(2e-3, 2e-3), S::vector(6e-3, 6e-3)), gimlet::presets::make_hmx(),
                 S::vector::Zero(), 2, "block");
     gimlet::solver_options<S> opt;
     opt.threads = 1;

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <type_traits>
 
 namespace user {
 
@@ -178,14 +179,16 @@ static_assert(gimlet::strength::check<gimlet::strength::von_mises>() && gimlet::
 static_assert(gimlet::eos::check<gimlet::eos::linear>() && gimlet::eos::check<gimlet::eos::mie_gruneisen<>>() &&
               gimlet::eos::check<user::ideal_gas_like>());
 static_assert(gimlet::thermal::check<gimlet::thermal::none>() && gimlet::thermal::check<gimlet::thermal::isentrope_temperature>() &&
-              gimlet::thermal::check<gimlet::materials::paper_temperature>() && gimlet::thermal::check<user::heat_counter>());
+              gimlet::thermal::check<gimlet::presets::paper_temperature>() && gimlet::thermal::check<user::heat_counter>());
 static_assert(gimlet::viscosity::check<gimlet::viscosity::none>() && gimlet::viscosity::check<gimlet::viscosity::bulk>() &&
               gimlet::viscosity::check<user::constant_q>());
 static_assert(gimlet::multi_field::check<gimlet::multi_field::by_body>());
 static_assert(gimlet::check_material<gimlet::elastic_material>() &&
-              gimlet::check_material<gimlet::materials::hmx_material<>>() &&
-              gimlet::check_material<gimlet::materials::hmx_material<gimlet::eos::energy_reference::internal_energy,
-                                                                     gimlet::materials::paper_temperature>>());
+              gimlet::check_material<gimlet::presets::hmx_material<>>() &&
+              gimlet::check_material<gimlet::presets::hmx_material<gimlet::eos::energy_reference::internal_energy,
+                                                                   gimlet::presets::paper_temperature>>());
+// A program written against the presets' former folder and namespace still compiles, for one release.
+static_assert(std::is_same_v<gimlet::materials::hmx_material<>, gimlet::presets::hmx_material<>>);
 static_assert(gimlet::scene::check_region<gimlet::scene::box<gimlet::space<2>>, gimlet::space<2>>() &&
               gimlet::scene::check_region<gimlet::scene::ball<gimlet::space<3>>, gimlet::space<3>>() &&
               gimlet::scene::check_region<gimlet::scene::difference<gimlet::scene::box<gimlet::space<2>>,

@@ -47,7 +47,7 @@ template <class T, class V = gimlet::viscosity::bulk>
 using hmx_like = gimlet::material<vm, mg, T, V>;
 
 using off_material = hmx_like<gimlet::thermal::none>;
-using on_material = gimlet::materials::hmx_material<>;  // isentrope_temperature
+using on_material = gimlet::presets::hmx_material<>;  // isentrope_temperature
 using probe_material = hmx_like<thermal_that_must_not_compile>;
 
 template <class S, class M>
@@ -77,7 +77,7 @@ static_assert(!ugimp_solver<S2, hmx_like<gimlet::thermal::none, gimlet::viscosit
 
 namespace {
 
-const gimlet::materials::hmx_constants hmx{};
+const gimlet::presets::hmx_constants hmx{};
 
 template <class T, class V = gimlet::viscosity::bulk>
 hmx_like<T, V> make_hmx_like(const T& thermal = T{}, const V& viscosity = V{}) {
@@ -139,7 +139,7 @@ double mechanical_difference(const A& a, const B& b) {
 
 TEST_CASE("thermal off: an HMX impact runs without a temperature and without thermal code", "[verification][static]") {
     auto off = impact(make_hmx_like(gimlet::thermal::none{}));
-    auto on = impact(gimlet::materials::make_hmx());
+    auto on = impact(gimlet::presets::make_hmx());
     auto probe = impact(make_hmx_like(thermal_that_must_not_compile{}));
     // Step the three runs together and record the peak pressure of the thermal-off run.
     const double t_end = 6e-6;

@@ -42,7 +42,7 @@ static_assert(gimlet::thermal::Thermal<dissipation_recorder>);
 
 using vm_material = gimlet::material<gimlet::strength::von_mises, gimlet::eos::linear, dissipation_recorder>;
 
-const gimlet::materials::hmx_constants hmx{};
+const gimlet::presets::hmx_constants hmx{};
 const double G = gimlet::elastic_moduli::from_young_poisson(hmx.young, hmx.poisson).shear;  // 4.748 GPa
 const double K = gimlet::elastic_moduli::from_young_poisson(hmx.young, hmx.poisson).bulk;   // 7.91 GPa
 const double Y0 = hmx.yield_stress;                                                         // 100 MPa
@@ -320,8 +320,8 @@ TEST_CASE("von Mises: one plastic step from a known elastic state matches the cl
 // The full HMX material (Mie-Grueneisen, bulk viscosity, heating): the EOS and q change only
 // the pressure, so the deviatoric return is the same as above.
 TEST_CASE("von Mises inside the HMX material: uniaxial strain stays on the yield surface", "[verification][strength]") {
-    using M = gimlet::materials::hmx_material<>;
-    material_point<2, M> mp(gimlet::materials::make_hmx());
+    using M = gimlet::presets::hmx_material<>;
+    material_point<2, M> mp(gimlet::presets::make_hmx());
     gimlet::space<2>::matrix L = gimlet::space<2>::matrix::Zero();
     L(1, 1) = -1e4;
     const double dt = 1e-9, de = 1e-5;

@@ -17,7 +17,7 @@ using heating = gimlet::thermal::hugoniot_heating<X>;
 constexpr auto paper_form = gimlet::thermal::expansion::hugoniot;
 constexpr auto irreversible = gimlet::thermal::expansion::isentropic;
 
-const gimlet::materials::hmx_constants hmx{};
+const gimlet::presets::hmx_constants hmx{};
 const double rho0 = hmx.density, V0 = 1 / rho0, c0 = hmx.sound_speed, s = hmx.slope, Gamma = hmx.gruneisen,
              cv = hmx.specific_heat, T0 = hmx.temperature;
 

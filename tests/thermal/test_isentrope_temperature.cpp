@@ -16,7 +16,7 @@ namespace {
 
 using Catch::Matchers::Contains;
 
-const gimlet::materials::hmx_constants hmx{};
+const gimlet::presets::hmx_constants hmx{};
 const double rho0 = hmx.density, c0 = hmx.sound_speed, s = hmx.slope, Gamma = hmx.gruneisen, cv = hmx.specific_heat,
              T0 = hmx.temperature, K0 = rho0 * c0 * c0;
 
