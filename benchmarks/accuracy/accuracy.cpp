@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Accuracy against wall time, one thread, for each shape function, update scheme, precision,
 // resolution and particles per cell:
-//   mms        the manufactured solution of tests/core/test_convergence.cpp (Wallstedt &
+//   mms        the manufactured solution of tests/solver/test_convergence.cpp (Wallstedt &
 //              Guilkey 2008), a sine displacement of amplitude A = 0.01 L in a periodic strip,
 //              at a Courant number of 0.2; error = max_p |x_p - x_exact| / A at the peak.
 //   impact_1d  examples/impact_1d (HMX slabs at +-300 m/s, uGIMP, double): relative error of
@@ -33,7 +33,7 @@ const char* scheme_name(gimlet::update_scheme s) {
 }
 
 /// u_x = A sin(kX) sin(wt), w = c k / 2, with the body force that makes it exact for gimlet's
-/// elastic material (the derivation is in tests/core/test_convergence.cpp).
+/// elastic material (the derivation is in tests/solver/test_convergence.cpp).
 template <class Shape, class Real>
 void mms(gimlet::update_scheme scheme, int cells, int ppc, double amplitude_fraction, double courant) {
     using S = gimlet::space<2, Real>;

@@ -359,7 +359,7 @@ strip release_strip(int length) {
 //   the energy left ringing in the blocks by the discrete wave (measured 9.2 %, 5.5 %, 3.4 % at
 //   10, 20, 40 cells per block: it converges with resolution), so 5 % at 40 cells; above 1.01
 //   the bodies would leave with 2 % more kinetic energy than they brought (at most the
-//   transient excess MUSL shows, tests/core/test_conservation.cpp);
+//   transient excess MUSL shows, tests/solver/test_conservation.cpp);
 // - the gap opens again: at 2.5 T the facing centres are more than 2.5 cells apart (no node
 //   shared any more), and the centres have moved apart by over 2 cells.
 // In each update scheme: each runs its own sequence of contact passes (docs/equations.md,

@@ -544,7 +544,7 @@ TEST_CASE("hard case: near-empty nodes (a sparse cloud of single particles)", "[
         // Momentum: the force on a node under the cut-off goes back to the particles that
         // exerted it, so it is exact (measured 7.5e-15 of one fragment's |m v|; 6.7e-9 when that
         // force was dropped). Energy: the fragments' elastic impacts on the block overshoot by
-        // 0.94 % (MUSL, as in the two-disk test of tests/core/test_conservation.cpp); bound 2 %.
+        // 0.94 % (MUSL, as in the two-disk test of tests/solver/test_conservation.cpp); bound 2 %.
         check_invariants(r, 1e-12, 0.02);
         // No particle holds more than the whole energy: 1/2 m v^2 <= 1.02 E0 = 1.02 x 12 fragments'
         // 1/2 m 800^2, i.e. |v| <= 800 sqrt(12.24) = 2800 m/s (measured 1102 m/s, a block particle

@@ -45,7 +45,7 @@ TEST_CASE("float: two elastic disks collide and part", "[core][float]") {
                 min_kinetic, worst_dp, worst_de);
     CHECK(min_kinetic < 0.2);    // they collided
     CHECK(worst_dp < 1e-5);      // float round-off over ~300 steps and 1000 particles
-    CHECK(worst_de < 0.06);      // the double-precision bound (tests/core/test_conservation.cpp)
+    CHECK(worst_de < 0.06);      // the double-precision bound (tests/solver/test_conservation.cpp)
 }
 
 TEST_CASE("float: light particles return their momentum exactly", "[core][float]") {
