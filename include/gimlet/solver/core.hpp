@@ -29,6 +29,7 @@
 #include "gimlet/solver/setup_checks.hpp"
 #include "gimlet/solver/slabs.hpp"
 #include "gimlet/solver/stages/consistent_mass.hpp"
+#include "gimlet/solver/stages/damping_transfer.hpp"
 #include "gimlet/solver/stages/field_choice.hpp"
 #include "gimlet/solver/stages/light_particles.hpp"
 #include "gimlet/solver/stages/volume_filter.hpp"
@@ -454,6 +455,10 @@ private:
     friend class stages::volumetric_average;
     template <std::size_t, std::size_t>
     friend class stages::field_choice;
+    template <Space>
+    friend class stages::damping_transfer;
+    // Stateless: G2P's blend of FLIP towards PIC (solver_options::pic_fraction).
+    using damping_transfer = stages::damping_transfer<S>;
 
     // What the stages share: the scene's state, the step's weights and slabs, the grid.
     solver_options<S> options_;

@@ -159,21 +159,6 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real 
 // it free: sum_p m_p dv_p = dt f_i, and f_ip / m_p = S_ip b - sigma_p G_ip / rho_p is bounded
 // by the particle's own state (docs/equations.md, "Light nodes").
 
-// ---- the damping transfer (solver_options::pic_fraction) -----------------------------
-//
-// With S the grid-to-particle interpolation, the PIC velocity S v^{n+1} differs from the FLIP
-// velocity v_p + S (v^{n+1} - v^n) by d_p = v_p - S v^n, the part of the particle velocities
-// the grid cannot carry. The blend v_p' = v_FLIP - alpha d_p removes the kinetic energy
-// sum_p m_p (alpha d_p . v_FLIP - alpha^2 |d_p|^2 / 2), and each particle's internal energy
-// takes its share (docs/equations.md, "Damping transfer"). Writing v_FLIP = v_PIC + d_p, the
-// cross term sum_p m_p d_p . S v^{n+1} is not Galilean-invariant particle by particle (a body
-// at 700 m/s would heat and cool its particles by 700 |d_p|). Summed, it is
-// sum_i v_i^{n+1} . (m_i v_i^n - sum_j K_ij v_j^n), K_ij = sum_p S_ip m_p S_jp, and as K is
-// symmetric with rows summing to m_i (the weights sum to one), that is
-// sum_p m_p cov_p(v^{n+1}, v^n): the covariance of the new and old nodal velocities over the
-// particle's stencil, which is invariant, and close to their variance (so positive) at a
-// stable step. Each particle takes that share.
-
 // Whether node entry e, with particle weight w and gradient g, is a light node of the
 // particle's (a stencil node it neither weighs nor pushes is not).
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
@@ -219,7 +204,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
     auto& v = particles_.template column<fields::velocity>();
     auto& energy = particles_.template column<fields::specific_internal_energy>();
     const auto& m = particles_.template column<fields::mass>();
-    const real alpha = real(options_.pic_fraction);
+    const real alpha = damping_transfer::fraction(*this);  // stages/damping_transfer.hpp
     const bool damping = alpha > 0;
     if constexpr (Lights) lights_.move(*this, dt);
     // MUSL's re-map of particle i's new momentum.
@@ -257,18 +242,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
         if (!damping) {
             v[i] = v_flip;
         } else {
-            const vector fresh = v_pic - change;  // S v^{n+1}
-            real cov = 0;  // centred, so no cancellation of |v|^2
-            auto at_cov = entries(i);
-            st.for_each([&](std::size_t node, real w, const vector&) {
-                const std::size_t e = at_cov(node);
-                cov += w * (grid_.velocity[e] - fresh).dot(grid_.velocity_old[e] - old);
-            });
-            const vector d = v_flip - v_pic;
-            // The particle's share of sum_p m_p d_p . v_PIC (the light nodes' part is its own).
-            const real cross = cov + d.dot(change);
-            v[i] = v_flip - alpha * d;
-            energy[i] += alpha * (cross + d.squaredNorm()) - real(0.5) * alpha * alpha * d.squaredNorm();
+            damping_transfer::blend(*this, i, alpha, old, v_pic, change, v_flip, v[i], energy[i]);
         }
         if (Lights && lights_.returns_momentum(i)) {
             // Its share of the momentum the light particles changed at its nodes:

@@ -19,6 +19,7 @@
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/core/space.hpp"
 #include "gimlet/material/update.hpp"
+#include "gimlet/solver/stages/damping_transfer.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -34,8 +35,8 @@ namespace gimlet::stages {
 ///
 /// Reads: the particles' mass, volume0, current volume, body and velocity, the number of bodies,
 /// the step's stencils and node entries, the grid's mass and velocities, the light nodes' forces
-/// (Core::on_light_node, Core::light_node_change), the options' light_particle_ratio and
-/// pic_fraction.
+/// (Core::on_light_node, Core::light_node_change), the options' light_particle_ratio and the
+/// damping transfer's fraction.
 /// Writes: the light particles' position and velocity (move); its own per-node and
 /// per-particle state, read by G2P (heavy_mass, momentum) and the velocity gradient.
 /// Chosen at run time (solver_options::light_particle_ratio, and whether any particle can be
@@ -218,7 +219,7 @@ public:
             v_read /= k_sum;
             // Against the velocity the main pass would give it, with the damping blend
             // v_FLIP - alpha (v_p - S v^n): the blend keeps momentum only summed over all particles.
-            const vector usual = v_flip - real(c.options_.pic_fraction) * (v[p] - old);
+            const vector usual = v_flip - damping_transfer<S>::fraction(c) * (v[p] - old);
             const vector D = m[p] * (v_read - usual);
             auto at_share = c.entries(p);
             c.stencils_[p].for_each([&](std::size_t node, real w, const vector&) {
