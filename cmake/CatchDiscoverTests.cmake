@@ -2,8 +2,8 @@
 # Test discovery for Catch2 v2, run after each test executable is built. It replaces the
 # CatchAddTests.cmake script that catch_discover_tests() (Catch2 v2's Catch.cmake) calls, and
 # takes the same -D inputs, because that script turns the listing into a CMake list: a test
-# name containing ';' (or an unbalanced '[') was split into filters that match no test case,
-# and such ctests "passed" without running anything. Here the listing is split on newlines
+# name containing ';' (or an unbalanced '[') is split into filters that match no test case,
+# and such ctests "pass" without running anything. Here the listing is split on newlines
 # only, and every name and filter is written as a bracket argument.
 #
 # Inputs used: TEST_EXECUTABLE, TEST_EXECUTOR, TEST_WORKING_DIR, TEST_SPEC, TEST_EXTRA_ARGS,

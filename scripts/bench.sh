@@ -138,7 +138,7 @@ load "accuracy end"
 python=python3
 [ -x /usr/bin/python3 ] && python=/usr/bin/python3
 
-# The flagship's outputs (issue 19: within 15 % of the same run with outputs off): the
+# The flagship's outputs (the aim: within 15 % of the same run with outputs off): the
 # quickstart's run (scripts/quickstart.sh's flags) on 2 threads, whole process, with
 #   off       no snapshots, one sample per 100 us (the least the flags allow), no figures;
 #   written   the quickstart's samples (every 0.1 us) and nine snapshots, no figures;

@@ -188,7 +188,7 @@ endforeach()
 # Every failtest is built at -O0 and, with g++, with one precompiled <gimlet/gimlet.hpp> (the
 # target failtest_pch, built by the first failtest that runs): what they test is whether a
 # translation unit compiles, which neither the optimiser nor a second parse of the umbrella
-# header decides. Both cut the serial chain of these builds at test time, 65 -> 35 s
+# header decides. Both cut the serial chain of these builds at test time to about half
 # (docs/testing.md). The ok variant's GIMLET_FAILTEST_OK appears in no header, so the one header
 # serves both variants. Not with clang: clang 14 crashes instantiating the solver from that
 # precompiled header (a segmentation fault in the frontend).
@@ -237,7 +237,7 @@ foreach(src IN LISTS GIMLET_FAILTEST_SOURCES)
             LABELS "static;failtest"
             RESOURCE_LOCK gimlet_build_tree
             # Started first: they run one at a time (the lock), and ctest, which on a fresh
-            # clone has no timings, had left the whole chain for the end, alone on one core.
+            # clone has no timings, would leave the whole chain for the end, alone on one core.
             COST 1000)
         if(kind STREQUAL "ko")
             if(_expect)
@@ -256,10 +256,11 @@ endforeach()
 # x86-64-v4 (AVX-512 and FMA), at -O3 and with the project's warnings, as objects that nothing
 # links or runs. g++'s flow warnings (-Wmaybe-uninitialized) follow the code it generates, so a
 # header that is clean in the portable build can warn in a user's -march=native one, and stop
-# it under -Werror: self_contact::side did with g++ 12 and AVX-512 (docs/testing.md, "A native
-# build"). With g++ only (clang has no such warnings), on x86-64 where it takes the flag. What it
-# covers: every member of the shared solvers (2-D, double, uGIMP; elastic and HMX; every contact
-# law; both partitions), not 3-D, float, the other shapes, or the tests' own solvers.
+# it under -Werror (g++ 12 with AVX-512 warns on a loop whose bound it cannot see:
+# docs/testing.md, "A native build"). With g++ only (clang has no such warnings), on x86-64
+# where it takes the flag. What it covers: every member of the shared solvers (2-D, double,
+# uGIMP; elastic and HMX; every contact law; both partitions), not 3-D, float, the other
+# shapes, or the tests' own solvers.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
     include(CheckCXXCompilerFlag)
     check_cxx_compiler_flag(-march=x86-64-v4 GIMLET_HAS_MARCH_X86_64_V4)
@@ -292,8 +293,8 @@ if(_gimlet_build_type)
     if(NOT _gimlet_multi_config)
         string(TOUPPER "${CMAKE_BUILD_TYPE}" _cfg)
         # At -O1, as the tests are (tests/CMakeLists.txt): the package tests check that the
-        # installed copy is found, compiles and works, not how fast; -O3 made them the release
-        # preset's two longest tests (docs/testing.md).
+        # installed copy is found, compiles and works, not how fast; at -O3 they would be the
+        # release preset's two longest tests (docs/testing.md).
         string(REGEX REPLACE "-O[23s]" "-O1" _consumer_flags "${CMAKE_CXX_FLAGS_${_cfg}}")
         list(APPEND _gimlet_consumer_options
              "-DCMAKE_CXX_FLAGS_${_cfg}=${_consumer_flags}")

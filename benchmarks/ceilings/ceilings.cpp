@@ -2,7 +2,7 @@
 // The machine's ceilings for the per-phase table of docs/performance.md (a roofline): what one
 // and N threads reach at
 //   - scalar multiply-adds: a = a * b + c on 12 independent accumulators kept scalar (the
-//     step's loops are scalar today), 2 flops each. Twelve chains cover the latency of a
+//     step's loops are scalar), 2 flops each. Twelve chains cover the latency of a
 //     multiply and an add (or an FMA) on two pipes each, and fit the 16 SSE registers; fewer
 //     chains measure the latency, not the throughput;
 //   - vector multiply-adds: the same on 24 or 64 accumulators the compiler vectorises (with the
@@ -142,8 +142,8 @@ double best_rate(long iterations, double per_iteration, Loop loop) {
 
 // The core's clock in GHz, one thread, best of 5: a chain of dependent integer additions, one
 // per cycle (12 per iteration; the loop's decrement and branch run beside the chain). A
-// register operand: some cores fold additions of an immediate at rename (this one read
-// 9.3 GHz with them). 0 where there is no x86-64 assembly (AT&T syntax, the compilers'
+// register operand: some cores fold additions of an immediate at rename (such a core reads
+// about 9.3 GHz with them). 0 where there is no x86-64 assembly (AT&T syntax, the compilers'
 // default).
 double clock_ghz([[maybe_unused]] long iterations) {
 #if defined(CEILINGS_X86_ASM)

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Shared by the benchmarks (not part of the library): the reference scene of issue 6, the 2-D
+// Shared by the benchmarks (not part of the library): the reference scene (two_blocks), the 2-D
 // HMX scene, flag parsing, timing and medians.
 
 #include <gimlet/gimlet.hpp>
@@ -70,7 +70,7 @@ inline gimlet::update_scheme parse_scheme(const std::string& s) {
 }
 
 /// Two blocks 40 mm x 50 mm, one above the other, `gap` apart, at +-300 m/s along y; periodic in
-/// x, free in y with 10 mm of room at each end: the reference scene of issue 6 (gap 4 mm) and
+/// x, free in y with 10 mm of room at each end: the benchmarks' reference scene (gap 4 mm) and
 /// the paper's contact validation geometry (examples/contact_validation).
 template <class M, class Sp = S2>
 gimlet::scene::scene<Sp, M> two_blocks(const M& mat, double cell, double gap, double velocity = 300.0) {

@@ -2,7 +2,7 @@
 // Throughput in particle-updates per second (particles x steps / wall seconds, the median of
 // repeated runs) of one scene:
 //   --scene reference  two linear-elastic blocks 40 mm x 50 mm, 4 mm apart, +-300 m/s, uGIMP,
-//                      single field (issue 6's reference scene at --cell 0.5: 64,000 particles)
+//                      single field (bench::two_blocks; at --cell 0.5: 64,000 particles)
 //   --scene hmx        the same blocks in the paper's HMX (von Mises + Mie-Grueneisen + viscosity
 //                      + heating) with the distance-switched contact, touching from the start
 //                      so every timed step resolves contact, and the flagship's defaults:

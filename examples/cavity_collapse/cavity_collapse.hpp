@@ -308,8 +308,8 @@ public:
     // threads from parallel_from particles. Each thread folds std::max over its particles, and
     // OpenMP joins the threads' maxima with the 0 the loop starts from: a maximum does not
     // depend on how the particles are shared, and 1 - det F is never -0, so the bits are the
-    // serial loop's whatever the thread count. Every step: one thread over every particle was a
-    // serial part of each step (docs/performance.md).
+    // serial loop's whatever the thread count. It runs every step: one thread over every
+    // particle would be a serial part of each step (docs/performance.md).
     template <class Solver>
     static double largest_compression(const Solver& sol) {
         const auto& F = sol.particles().template column<gimlet::fields::deformation_gradient>();

@@ -88,8 +88,8 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
 // exact_numbers' (std::to_chars' shortest text that reads back to the same double), formatted
 // straight into a buffer, a block of consecutive particles on each of the run's threads, and
 // written in block order: the bytes a stream through exact_numbers writes, particle by particle,
-// in a fraction of its time, and on every thread (a serial pass left the others idle). The
-// whole map is held as text until it is written: about 80 bytes a particle.
+// in a fraction of its time, and on every thread (a serial pass would leave the others idle).
+// The whole map is held as text until it is written: about 80 bytes a particle.
 template <class Solver>
 void write_map(const std::filesystem::path& file, const Solver& sol) {
     const auto& ps = sol.particles();

@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 # PNG files compressed at zlib's level 1 rather than Pillow's 6: the same pixels, files about a
-# fifth larger, and encoding a third of the time it took, which was a fifth of the figures'
+# fifth larger, and encoding in a third of level 6's time, which is a fifth of the figures'
 # (docs/performance.md, "The flagship's outputs").
 PNG = {"pil_kwargs": {"compress_level": 1}}
 
@@ -96,8 +96,8 @@ def raster(m, key, spacing):
     spacings, and leaves out what lies beyond. Returns (image, extent) for
     imshow(origin="lower"), or None if no particle has a finite place.
 
-    An image instead of a scatter of one marker per particle: drawing 54,000 markers a panel was
-    most of the figures' time, and markers under a pixel wide left a moire of blank specks where
+    An image instead of a scatter of one marker per particle: drawing 54,000 markers a panel is
+    most of the figures' time, and markers under a pixel wide leave a moire of blank specks where
     the particles tile the material."""
     x, y, v = m["x_mm"], m["y_mm"], m[key]
     ok = np.isfinite(x) & np.isfinite(y)
@@ -185,7 +185,7 @@ PANELS = (("pressure_MPa", False, "pressure (MPa)", "viridis", None, "maps_press
 MAP_SIDES = tuple((key, label, cmap, lo) for key, _, label, cmap, lo, _ in PANELS)
 
 # This process's map figure, kept from one map to the next: building its axes, their ticks and
-# the colour bars was a third of a map's time. A map drawn on the kept figure is the same PNG
+# the colour bars is a third of a map's time. A map drawn on the kept figure is the same PNG
 # file, byte for byte, as one drawn on a new figure (the quickstart's nine maps compared).
 KEPT_MAP_FIGURE = {}
 
@@ -201,9 +201,9 @@ def map_figure(figure, sides, tc):
             a.set_aspect("equal")
             a.set_xlabel("x (mm)")
         ax[0].set_ylabel("y (mm)")
-        # Margins set by hand, the widest tight_layout chose over the quickstart's nine maps
-        # (their tick labels' widths vary): the layout engine measured every label, a quarter of
-        # the map's time, and every map now has the same layout.
+        # Margins set by hand, the widest tight_layout chooses over the quickstart's nine maps
+        # (their tick labels' widths vary): a layout engine measures every label, a quarter of
+        # the map's time, and fixed margins give every map the same layout.
         fig.subplots_adjust(left=0.035, right=0.944, bottom=0.112, top=0.905, wspace=0.075)
         figure.update(fig=fig, axes=ax, title=fig.suptitle(""), images={})
     fig = figure["fig"]
@@ -276,7 +276,7 @@ def plot_maps(out, times, panels, label, cmap, lo, name):
         if best is None or miss < best[0]:
             best = (miss, rows, cols)
     _, rows, cols = best
-    # The layout in inches, set by hand: a layout engine measured every tick label of every
+    # The layout in inches, set by hand: a layout engine measures every tick label of every
     # panel, a third of the figure's time.
     width, height = 2.4, 2.4 * ratio  # a panel
     left, right, bottom, top, title, gap = 0.55, 1.25, 0.45, 0.1, 0.25, 0.12
@@ -518,7 +518,7 @@ def draw(out, spacing, follower=None):
 
 def exit_now():
     """Ends the process once every figure is drawn, without the interpreter's teardown: freeing
-    matplotlib's objects one by one took about 0.1 s, which the run waited for (it waits for
+    matplotlib's objects one by one takes about 0.1 s, which the run would wait for (it waits for
     this script). Every figure is written and renamed by then, and every process this script
     started has ended (the pool's, and the child, joined or stopped by finish())."""
     sys.stdout.flush()

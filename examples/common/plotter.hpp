@@ -19,18 +19,19 @@ inline std::string shell_word(const std::string& s) {
     return q + "'";
 }
 
-// The figures drawn while the run goes on: the script (cavity_collapse's `plot.py --follow`) reads each snapshot's index and
-// time as its map is written and draws the map from processor time the run leaves idle, and
-// draws the rest when the run ends (the line `end`; its input closed without it, by a run that
-// threw or was killed, it draws nothing more). Drawn after the run, the figures took 12 % of
-// the quickstart's run with outputs off (docs/performance.md, "The flagship's outputs").
+// The figures drawn while the run goes on: the script (cavity_collapse's `plot.py --follow`)
+// reads each snapshot's index and time as its map is written and draws the map from processor
+// time the run leaves idle, and draws the rest when the run ends (the line `end`; its input
+// closed without it, by a run that threw or was killed, it draws nothing more). Drawn after the
+// run, the figures take 12 % of the quickstart's run with outputs off (docs/performance.md,
+// "The flagship's outputs").
 class plotter {
 public:
     // command: the plotter's, its errors sent to log (removed at the end if empty).
     plotter(const std::string& command, std::filesystem::path log) : log_(std::move(log)) {
         // A plotter that cannot start (no python3, no matplotlib) exits; writing to its pipe
         // then fails with EPIPE rather than stopping the run with SIGPIPE. (For the whole
-        // process: with its standard output piped into a program that exits early, the run now
+        // process: with its standard output piped into a program that exits early, the run
         // goes on to its end and writes its files.)
         std::signal(SIGPIPE, SIG_IGN);
         pipe_ = popen((command + " 2>" + shell_word(log_.string())).c_str(), "w");

@@ -78,9 +78,9 @@ static_assert(contact::Contact<always_stick>);
 static_assert(!contact::Contact<multi_field_without_resolve>);
 
 // Written the way docs/concepts.md teaches a contact law: "contact wherever the bodies meet and
-// approach". The framework asks only about approaching pairs and keeps the step's decision,
-// which is what the same policy written against the old node-level contract got wrong (it
-// corrected approaching pairs only and ignored the kept ones: +25 % total energy under MUSL).
+// approach". The framework asks only about approaching pairs and keeps the step's decision; the
+// same policy written as a contact::NodeResolver that corrects approaching pairs only and
+// ignores the kept ones gives +25 % total energy under MUSL.
 struct approach_only {
     static constexpr bool multi_field = true;
     using required_fields = gimlet::field_list<>;
@@ -405,8 +405,8 @@ double release_energy_peak(const strip& st, double periods, gimlet::update_schem
 // in the release test (20 cells per block), in every scheme. Measured (largest (KE + IE) / KE0
 // after the first step): distance 0.97211 / 0.97314 / 0.97999 under MUSL / USL / USF,
 // approach-only and energy-adding the same to every printed digit: the energy-adding law's
-// excess is projected away. Applied as it asks, it reached 1.022 (MUSL) and 61.9 (USL) times
-// the initial kinetic energy (1.36 and 55.5 at 40 cells per block).
+// excess is projected away. Applied as it asks, it would reach 1.022 (MUSL) and 61.9 (USL)
+// times the initial kinetic energy (1.36 and 55.5 at 40 cells per block).
 TEST_CASE("a user's contact law cannot create energy", "[contact][verification]") {
     const strip st = release_strip(20);
     for (const auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usl, gimlet::update_scheme::usf}) {
@@ -423,7 +423,7 @@ TEST_CASE("a user's contact law cannot create energy", "[contact][verification]"
 // A law with its own friction in impulse(): frictionless (or mu = 0.05) whatever friction() says,
 // here no slip (infinity). The framework holds a pair the law engaged through the step's later
 // passes with the law's own tangential impulse, not with Coulomb at friction(): held stuck in
-// MUSL's re-mapping while the particles slid, two blocks meeting obliquely gained 15.2 % energy
+// MUSL's re-mapping while the particles slide, two blocks meeting obliquely gain 15.2 % energy
 // (15.9 % at 2.5 cm cells).
 struct own_friction {
     static constexpr bool multi_field = true;
@@ -444,13 +444,13 @@ struct own_friction {
     }
 };
 static_assert(contact::Law<own_friction>);
-// Laws whose answer depends on the velocities they are asked on (found by a second review): one
-// that sticks while the approach is below 0.7 m/s and lets slide above, and one that stops only a
-// tenth of the approach. Asked again in the step's later passes, where the held pair barely
-// approaches, the first stuck there what the deciding pass had let slide (+0.4 % under MUSL on
-// these cells, +57 % under USF on 2.5 cm cells); holding the whole approach after a tenth was
-// stopped created 3.8 times the initial energy (MUSL). The framework now repeats the fractions
-// of the approach and of the slip that the law's impulse removed where it engaged the pair.
+// Laws whose answer depends on the velocities they are asked on: one that sticks while the
+// approach is below 0.7 m/s and lets slide above, and one that stops only a tenth of the
+// approach. Asked again in the step's later passes, where the held pair barely approaches, the
+// first would stick where the deciding pass let the pair slide (+0.4 % under MUSL on these
+// cells, +57 % under USF on 2.5 cm cells); holding the whole approach after a tenth was stopped
+// would create 3.8 times the initial energy (MUSL). So the framework repeats the fractions of
+// the approach and of the slip that the law's impulse removed where it engaged the pair.
 struct fickle {
     static constexpr bool multi_field = true;
     using required_fields = gimlet::field_list<>;
@@ -652,7 +652,7 @@ friction_result slide(double mu, double g) {
 
 using friction_policies = std::tuple<contact::bardenhagen, contact::distance>;
 
-// Bounds: deceleration within 5 % of mu g (the issue's bound; measured within 0.2 %); still
+// Bounds: deceleration within 5 % of mu g (measured within 0.2 %); still
 // sliding at the end (slip > 0.3 m/s). Frictionless: the slider's x-velocity stays within
 // 1e-6 v0 of v0 over the run: the normal correction is along the discrete normal, which is y up
 // to round-off and to the tiny column-to-column differences of the bouncing slider (measured
@@ -724,14 +724,15 @@ TEMPLATE_LIST_TEST_CASE("contact keeps HMX blocks from interpenetrating in a 300
 // many-body correction (pairs in turn, repeated until they agree) acts there. Run until well after the release (1.5 T, T = 2L/c_L).
 // Bounds: total momentum to 1e-12 of the upper body's (round-off, as for two bodies, with the
 // default mass cut-off: the force on a node under it goes back to the particles that exerted it;
-// when it was dropped, ~1e-10 of the momentum was lost whatever the contact policy); the
+// dropped, it would lose ~1e-10 of the momentum whatever the contact policy); the
 // total energy never above 1.01 of its start (contact may lose energy, never create it); the
 // upper block's particle domains overlap neither lower block's by 0.1 cell or more (as in
 // test 5; measured body-wide, the highest lower-block domain edge minus the lowest upper-block
 // one, which bounds every column's overlap from above); the upper block has rebounded.
-// Before the many-body correction went pairwise and the distance switch measured each pair along
-// its own normal, momentum drifted by up to 14 % of the upper body's and the distance policy let
-// the blocks overlap by 0.25 cell at the triple lines.
+// Without the pairwise correction (each body against the node's centre of mass instead,
+// Bardenhagen et al.'s eq. 19) and each pair's own normal for the distance switch, momentum
+// drifts by up to 14 % of the upper body's and the distance policy lets the blocks overlap by
+// 0.25 cell at the triple lines.
 struct three_result {
     double dp = 0, energy_peak = 0, overlap = -1e300, v_upper_end = 0;
     bool three_field_node = false;
@@ -897,13 +898,13 @@ TEST_CASE("a user-written always-stick policy conserves momentum and sticks like
 // Regressions: contact may lose energy, never gain it. Elastic blocks meet from a 2-cell gap
 // and rebound.
 // - MUSL: the contact pass after the re-mapping must keep the constraint at the nodes the grid
-//   update engaged. Dropping it there (the re-mapped velocities can look separating) released
+//   update engaged. Dropping it there (the re-mapped velocities can look separating) releases
 //   stress energy twice: up to twice the energy the blocks came in with.
 // - USF: the stress is computed before the forces, so where contact acts must be decided before
 //   it and kept in the grid update. Deciding again after the forces (engaging nodes the stress
 //   saw free), or deciding on the sign of the start-of-step relative velocity (which chatters
 //   near release and leaves light fringe nodes free under the interface's compressive stress)
-//   gave Bardenhagen contact 1.81 and 1.12 times the initial energy.
+//   gives Bardenhagen contact 1.81 and 1.12 times the initial energy.
 namespace {
 
 template <class Contact>
@@ -944,7 +945,7 @@ double energy_ratio_after_gap_collision(gimlet::update_scheme scheme) {
 
 }  // namespace
 
-// 1 % above the start would already be created energy (the defects gave 1.12-1.96).
+// 1 % above the start would already be created energy (the faults above give 1.12-1.96).
 TEST_CASE("contact from a gap never creates energy", "[contact][verification]") {
     using gimlet::update_scheme;
     for (auto scheme : {update_scheme::musl, update_scheme::usl, update_scheme::usf}) {

@@ -34,8 +34,8 @@ TEST_CASE("grid: the boundaries default to free, and a body reaching the end sto
 }
 
 // A periodic axis wraps any finite position into [lower, upper): one just outside by one
-// period, and one far away (found by fuzzing: at 7e21 m the shift by whole periods rounded off
-// by more than a period, and the weights' cell index overflowed an int).
+// period, and one far away (at 7e21 m a shift by whole periods rounds off by more than a
+// period, and the weights' cell index would overflow an int).
 TEST_CASE("grid: a periodic axis wraps near and far positions into the domain", "[core]") {
     using S = gimlet::space<2>;
     gimlet::grid_spec<S> gs;

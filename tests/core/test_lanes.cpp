@@ -82,7 +82,8 @@ static_assert(!gimlet::lanes_capable<user_material_alone, S>);
 static_assert(!gimlet::lanes_capable<elastic_alone, S>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<3>>);
 static_assert(!gimlet::lanes_capable<gimlet::elastic_material, gimlet::space<2, float>>);
-static_assert(!gimlet::lanes_capable<gimlet::presets::hmx_material<>, S>);  // von Mises branches on the yield test (written for lanes, it gained nothing: docs/performance.md)
+// von Mises branches on the yield test (written for lanes, it gains nothing: docs/performance.md)
+static_assert(!gimlet::lanes_capable<gimlet::presets::hmx_material<>, S>);
 
 // n particles in random states: stretched, sheared and rotated F (det F from 0.5 to 1.5),
 // stresses of either sign up to 1 GPa, energies, masses and volumes.

@@ -66,7 +66,7 @@ TEST_CASE("one-sided wall: an elastic bar rebounds with its speed and leaves", "
                 slip.clearance * 1e3);
     // MUSL and USL: the rebound speed within 2 % (measured -1.35 % and -1.39 %; MUSL at 0.25 mm
     // cells -2.0 %, at 0.5 mm -3.0 %: the loss is the release's, and falls with h), and the bar
-    // leaves. USF gained energy here (+8 % at 0.25 mm), so the solver refuses a one-sided wall
+    // leaves. USF gains energy here (+8 % at 0.25 mm), so the solver refuses a one-sided wall
     // with USF (below).
     for (const auto& r : {wall, usl}) {
         CHECK(r.velocity == Approx(speed).epsilon(0.02));

@@ -42,7 +42,7 @@ TEST_CASE("contact validation: the distance switch removes the interface pressur
     CHECK(dist.peak_over_plateau < 0.5 * barden.peak_over_plateau);
 }
 
-// The issue's bound, interface peak over plateau at most 1.05 for the distance switch, needs a
+// The bound, interface peak over plateau at most 1.05 for the distance switch, needs a
 // cell at which the shocked plateau itself is flat to better than 5 %: the FLIP ringing behind
 // the shock (docs/reproduction.md, Known differences) puts cell-averaged values of 1.2-1.5 times
 // the plateau into the plateau at 2 and 1 mm (the distance policy reads 1.14 and 1.07 there).

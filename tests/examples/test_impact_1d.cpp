@@ -32,7 +32,7 @@ impact_1d::result check_impact(double v, double length = 20e-3, double end_time 
     CHECK(std::abs((r.plateau_temperature - 300.0) / (r.rh_temperature - 300.0) - 1) < 0.03);
     CHECK(r.max_temperature < 1000.0);
     if (!r.rh.two_wave) {
-        // Single wave: U_s within 3 % of c0 + s v (the issue's bound) and of the elastic-plastic
+        // Single wave: U_s within 3 % of c0 + s v and of the elastic-plastic
         // Rankine-Hugoniot speed; the front rises (10-90 % of sigma_yy) within 4 cells.
         CHECK(std::abs(r.shock_speed / (2740.0 + 2.6 * v) - 1) < 0.03);
         CHECK(std::abs(r.shock_speed / r.rh.shock_speed - 1) < 0.03);
@@ -94,10 +94,10 @@ TEST_CASE("impact_1d with the PIC blend: plateau, temperature, plastic work and 
     }
 }
 
-// With the PIC blend the viscosity no longer sets the answer: doubling (b1, b2) from Abaqus's
+// With the PIC blend the viscosity does not set the answer: doubling (b1, b2) from Abaqus's
 // (0.06, 1.2) moves sigma_yy by 0.12 / 0.10 / 0.10 % and T - T0 by 0.14 / 0.18 / 0.11 K at
 // 300 / 500 / 700 m/s; halving them, by 0.18 / 0.06 / 0.02 % and 0.07 / 0.20 / 0.06 K. (FLIP:
-// doubling moved sigma_yy by 1.05 % at 500 m/s and halved the plastic work.)
+// doubling moves sigma_yy by 1.05 % at 500 m/s and halves the plastic work.)
 TEST_CASE("impact_1d with the PIC blend: the viscosity does not set the answer", "[examples][verification][long]") {
     for (const double v : {300.0, 500.0, 700.0}) {
         const auto s = blended(v);
@@ -192,11 +192,11 @@ TEST_CASE("impact_1d with the consistent mass: less ringing, a sharper front", "
 
 // The consistent mass beside multi-field contact: the slabs in their own velocity fields with the
 // distance contact, k = 4 at (0.12, 2.4), 0.5 mm cells, 1.5 us after the impact. The first cell
-// behind the contact plane (its two particle rows) carries the plateau's sigma_yy. Before the
-// nodes shared by two fields kept their lumped accelerations, that cell read 37 % under the
-// plateau under MUSL and 33 % under USF (24 % at k = 1): the iteration coupled each field's edge
-// node, whose velocity the contact then sets, to the cell behind it (docs/equations.md,
-// "Consistent-mass accelerations"). Measured after: -2.6 % (MUSL) and +1.9 % (USF), -2.0 % at k = 1;
+// behind the contact plane (its two particle rows) carries the plateau's sigma_yy, because the
+// nodes shared by two fields keep their lumped accelerations: iterated, they would couple each
+// field's edge node, whose velocity the contact then sets, to the cell behind it, which would
+// read 37 % under the plateau under MUSL and 33 % under USF (24 % at k = 1; docs/equations.md,
+// "Consistent-mass accelerations"). Measured: -2.6 % (MUSL) and +1.9 % (USF), -2.0 % at k = 1;
 // with the lumped mass -1.9 % and +3.1 %.
 TEST_CASE("impact_1d with the consistent mass and the distance contact: no pressure dip at the contact plane",
           "[examples][verification][contact]") {

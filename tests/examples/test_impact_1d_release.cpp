@@ -175,7 +175,7 @@ TEST_CASE("impact_1d release, strength off, 500 and 700 m/s: T - T0 about the is
 // The coarse twin (0.2 mm cells, 8 times less work), at 700 m/s: measured 48.83 K (+3.9 %), theta
 // moving by up to 1.37 % from its plateau value. At 500 m/s the 0.2 mm grid reads 21.74 K, +11.0 %
 // of the isentropic release's and over the 10 % asked, since the consistent mass keeps the
-// contact plane's cell lumped (docs/equations.md, "Consistent-mass accelerations"; before, +8.1 %):
+// contact plane's cell lumped (docs/equations.md, "Consistent-mass accelerations"):
 // the criterion is the `long` case's, at 0.1 mm, where both speeds meet it.
 TEST_CASE("impact_1d release, strength off, 0.2 mm cells, 700 m/s: T - T0 about the isentropic release's",
           "[examples][verification]") {

@@ -48,7 +48,7 @@ std::uint64_t fnv1a(const std::uint8_t* p, std::size_t n) {
 }  // namespace
 
 // Writes a valid checkpoint of the prototype into the first corpus directory, so the corpus
-// always holds a file of today's format and fields, whatever the committed seeds are.
+// always holds a file of the current format and fields, whatever the committed seeds are.
 extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
     for (int i = 1; i < *argc; ++i) {
         const std::string a = (*argv)[i];

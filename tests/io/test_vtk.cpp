@@ -250,8 +250,8 @@ TEST_CASE("vtp: bad array names and values are refused by name", "[io][vtk][erro
     quoted.add("a<\"b\">&c", mass);
     quoted.write(dir / "q.vtp", known_particles<store2>(1));
     CHECK_THAT(vtp_file(dir / "q.vtp").xml, Contains("Name=\"a&lt;&quot;b&quot;&gt;&amp;c\""));
-    // What XML cannot hold even escaped is refused (found by fuzzing: VTK's reader refuses the
-    // whole file); UTF-8 text is kept as it is.
+    // What XML cannot hold even escaped is refused (VTK's reader refuses the whole file);
+    // UTF-8 text is kept as it is.
     CHECK_THROWS_WITH(quoted.add(std::string("tab\there"), mass), Contains("VTK array name") && Contains("0x09"));
     CHECK_THROWS_WITH(quoted.add(std::string("bell\x07"), mass), Contains("control character"));
     CHECK_THROWS_WITH(quoted.add(std::string("latin1 \xe9t\xe9"), mass), Contains("not UTF-8"));

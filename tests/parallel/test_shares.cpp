@@ -35,7 +35,7 @@ std::vector<int> runs(std::ptrdiff_t n, int shares, [[maybe_unused]] int team) {
 TEST_CASE("thread_shares runs every item once, on teams of any size", "[parallel][shares]") {
     for (std::ptrdiff_t n : {0, 1, 5, 17, 1000, 100003})
         for (int shares : {1, 2, 3, 8, 65})  // 65: more than the shares an object holds (64)
-            for (int team : {1, 2, 3}) {  // a team of 8 made LLVM 14's libomp leak (LeakSanitizer)
+            for (int team : {1, 2, 3}) {  // a team of 8 makes LLVM 14's libomp leak (LeakSanitizer)
                 CAPTURE(n, shares, team);
                 const std::vector<int> count = runs(n, shares, team);
                 // The first item not run exactly once (none: n).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Hard cases (issue 7, item 1), coarse but real: runs at the edge of what the method does. Each
+// Hard cases, coarse but real: runs at the edge of what the method does. Each
 // one watches the whole run (every step) and asserts
 //   * every particle field finite (position, velocity, stress, F, e, temperature), det F > 0;
 //   * no particle lost: the count is unchanged and every particle is inside the grid;
@@ -335,9 +335,7 @@ TEST_CASE("hard case: uniaxial HMX impact towards the Mie-Grueneisen singularity
 
     // The strips that run through: 2000 m/s (steady Hugoniot state eta = 0.129) and 4000 m/s
     // (1 - s eta = 0.21 there). Their first steps over-compress the contact plane: measured eta
-    // 0.3248 and 0.3645 (1 - s eta = 0.052). With the particle-scale viscosity of before, 2000 m/s
-    // reached 0.3405 and 4000 m/s stopped at the singularity (the stop came between 3000 and
-    // 3500 m/s; now between 4000 and 5000).
+    // 0.3248 and 0.3645 (1 - s eta = 0.052); the stop comes between 4000 and 5000 m/s.
     for (const double v : {2000.0, 4000.0}) {
         DYNAMIC_SECTION(v << " m/s: runs through, stays finite and balanced, short of the limit") {
             auto sol = make_strip(v, cell, length, t_end(v));
@@ -403,7 +401,7 @@ const char* scheme_label(gimlet::update_scheme s) {
     return s == gimlet::update_scheme::musl ? "MUSL" : s == gimlet::update_scheme::usl ? "USL " : "USF ";
 }
 
-// Issue 17, item 4. With the distance or Bardenhagen contact, or under USF, the energy never rises
+// With the distance or Bardenhagen contact, or under USF, the energy never rises
 // above its start (the first contact step is an inelastic impact at the shared nodes). MUSL and
 // USL with a single field do create energy in a strong impact: measured at CFL 0.4, MUSL +1.37,
 // +1.84, +4.89 % at 300, 1000, 2500 m/s, USL +1.10, +1.41, +2.12 %. It is the schemes' own
@@ -542,9 +540,10 @@ TEST_CASE("hard case: near-empty nodes (a sparse cloud of single particles)", "[
         run_watched(sol, 40e-6, r);
         print(r);
         // Momentum: the force on a node under the cut-off goes back to the particles that
-        // exerted it, so it is exact (measured 7.5e-15 of one fragment's |m v|; 6.7e-9 when that
-        // force was dropped). Energy: the fragments' elastic impacts on the block overshoot by
-        // 0.94 % (MUSL, as in the two-disk test of tests/solver/test_conservation.cpp); bound 2 %.
+        // exerted it, so it is exact (measured 7.5e-15 of one fragment's |m v|; dropping that
+        // force would lose 6.7e-9). Energy: the fragments' elastic impacts on the block overshoot
+        // by 0.94 % (MUSL, as in the two-disk test of tests/solver/test_conservation.cpp);
+        // bound 2 %.
         check_invariants(r, 1e-12, 0.02);
         // No particle holds more than the whole energy: 1/2 m v^2 <= 1.02 E0 = 1.02 x 12 fragments'
         // 1/2 m 800^2, i.e. |v| <= 800 sqrt(12.24) = 2800 m/s (measured 1102 m/s, a block particle
@@ -567,7 +566,7 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
     // The sparse cloud with two more single particles of 1e-10 and 1e-14 of a fragment's mass,
     // across the fragments' paths. A light particle next to a node where a heavy particle has a
     // tiny weight reads that node's acceleration (~ 1/sqrt(S)) with weight O(1): without the
-    // light-particle treatment it was flung at 52-115 km/s and crushed (det F 0) in every variant
+    // light-particle treatment it is flung at 52-115 km/s and crushed (det F 0) in every variant
     // measured (docs/robustness.md). With it, it reads the nodes by their reliability and the
     // momentum it changes goes back to its heavy neighbours.
     auto run = [](auto sol, const char* name, double bound_rise = 0.02) {
@@ -651,9 +650,9 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
     }
     SECTION("one material seeded finely beside coarsely is never light") {
         // Particles of one material at 5 x 5 and 1 per cell (a mass ratio of 1/25) in one field:
-        // lightness compares densities, so none is light. (A mass test made the fine ones light,
-        // and the treatment then removed 9-16 % of the energy of the two blocks' impact, where
-        // nothing is flung without it: docs/equations.md.)
+        // lightness compares densities, so none is light. (A mass test would make the fine ones
+        // light, and the treatment would remove 9-16 % of the energy of the two blocks' impact,
+        // where nothing is flung without it: docs/equations.md.)
         auto sc = periodic_scene(12, 8);
         const auto steel = gimlet::make_elastic_material(steel_density, steel_young, steel_nu);
         sc.add_body(gimlet::scene::box<S>(S::vector(2 * cloud_cell, 2 * cloud_cell), S::vector(6 * cloud_cell, 6 * cloud_cell)), steel,
@@ -673,7 +672,7 @@ TEST_CASE("hard case: particles far lighter than their neighbours", "[robustness
         // Each single particle is a body, alone in its field, so none is ever light: the contact
         // acts between them (measured 2326 m/s, det F 0.64: a light body struck by a fragment
         // leaves it at up to twice its speed plus its own, the elastic limit). No fling: under
-        // 5 times the fragments' speed, where one field flung the light particles at 52-67 km/s.
+        // 5 times the fragments' speed, where one field flings the light particles at 52-67 km/s.
         const auto [r, light] = run(make_cloud<gimlet::contact::distance>(1e-12, 1e-10, 1e-14), "light bodies, distance");
         CHECK(light == 0);
         CHECK(r.max_speed < 5 * fragment_speed);

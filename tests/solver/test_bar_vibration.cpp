@@ -20,7 +20,7 @@
 ///   v0 = 1e-4 c keeps the strain amplitude v0/c = 1e-4: the model is linear to 1e-4.
 ///
 /// The period is measured from the zero crossings of V (linear interpolation between steps)
-/// over three periods, and must be within 1 % of 4L/c (the requirement of the issue).
+/// over three periods, and must be within 1 % of 4L/c.
 
 #include <gimlet/gimlet.hpp>
 
@@ -144,7 +144,7 @@ TEMPLATE_LIST_TEST_CASE("elastic bar, fixed-free: first-mode period and energy",
                 r.omega_dt / 2, r.centred_error);
     // Three periods give six zero crossings of V (at T/4 + k T/2).
     REQUIRE(r.crossings >= 5);
-    // The issue's requirement: the first-mode period within 1 % of 4L/c. At 50 cells along the
+    // The requirement: the first-mode period within 1 % of 4L/c. At 50 cells along the
     // bar the dispersion error of the mode is far smaller (linear/GIMP: ~1e-4, second order in
     // h); the B-splines carry a first-order error from the fixed wall (their ghost nodes beyond
     // it are held at zero velocity, which moves the effective clamp outwards by a fraction of

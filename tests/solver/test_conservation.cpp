@@ -80,9 +80,9 @@ summary run_and_summarise(gimlet::update_scheme scheme) {
 // different discretisations. Bound: within 6 % of the initial energy at all times and never
 // more than 2 % above it (a growing excess would mean instability; the same bound as the
 // elastic impacts of the sparse-cloud hard case). Measured: linear 1.53 %, uGIMP and cpGIMP
-// 1.2 %. (Until the stress power took the midpoint specific volume, linear read 1.29 %: the same
-// motion to the bit, since this EOS does not read e, but an internal energy that the end-of-step
-// volume under-counted by a first-order share of each step's strain.)
+// 1.2 %. (With the end-of-step specific volume in the stress power, linear would read 1.29 %:
+// the same motion to the bit, since this EOS does not read e, but an internal energy that
+// volume under-counts by a first-order share of each step's strain.)
 TEMPLATE_LIST_TEST_CASE("two elastic disks conserve mass and momentum, bound energy (MUSL)",
                         "[core][verification]", shapes) {
     const auto r = run_and_summarise<TestType>(gimlet::update_scheme::musl);

@@ -137,8 +137,8 @@ TEST_CASE("consistent mass: the grid's waves run closer to the continuum's speed
 
 // With the largest mass cut-off (1e-3 of the heaviest particle) the blocks' edge nodes are
 // light too, inside the stencils of particles that also reach heavy nodes: each particle's share
-// of M a is spread over its heavy nodes alone, or momentum leaks there (it did: 6e-7 to 1e-6 of
-// sum m |v| over 200 steps in one field, before the shares were renormalised).
+// of M a is spread over its heavy nodes alone, or momentum leaks there (6e-7 to 1e-6 of
+// sum m |v| over 200 steps in one field without that renormalisation).
 TEMPLATE_TEST_CASE("consistent mass: momentum is kept, with light nodes beside heavy ones", "[core][conservation]", two_field,
                    single) {
     for (const double cutoff : {1e-12, 1e-3}) {

@@ -149,9 +149,8 @@ TEST_CASE("numerical trouble names particle, position and step", "[core][errors]
         CHECK_THROWS_WITH(sol.step(0.01), Contains("det F") && Contains("inverted") && Contains("particle") && Contains("at ("));
     }
     SECTION("a policy's own field going non-finite (found by fuzzing)") {
-        // The fuzzer's input, as it found it: a specific heat of 1.5e-315 J/(kg K) is positive and
-        // finite, so it is accepted, and the first step's heating made the temperature infinite
-        // while every core field stayed finite.
+        // A specific heat of 1.5e-315 J/(kg K) is positive and finite, so it is accepted, and the
+        // first step's heating makes the temperature infinite while every core field stays finite.
         using hmx = gimlet::presets::hmx_material<>;
         gimlet::grid_spec<S> gs;
         gs.lower = S::vector(-0x1.999999999999ap-5, -0x1.2fd2c96c6306p-5);

@@ -80,7 +80,7 @@ template <class C>
 /// A law's own counters, kept right whatever runs in parallel: `tally` (default-constructible,
 /// merged with +=), `count(tally&, pair, outcome) const` for every pair the law engaged, and
 /// `record(const tally&)` (non-const), called once per contact pass after its nodes, serially.
-/// The framework fills one tally per pass in node order (contact runs serially today; run in
+/// The framework fills one tally per pass in node order (contact runs serially; run in
 /// parallel, each thread would fill its own and they would merge in thread order), so the
 /// policy's own members change only in `record`. solver::contact() reads them back.
 template <class C, class S>

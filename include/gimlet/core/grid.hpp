@@ -310,7 +310,7 @@ public:
                 if (x[d] >= spec_.upper[d]) x[d] -= len * std::floor((x[d] - spec_.lower[d]) / len);
             } else if (std::isfinite(x[d])) {
                 // Far away, where a shift by whole periods rounds off by more than a period (at
-                // 7e21 m, found by fuzzing a checkpoint) or overflows: the exact remainder.
+                // 7e21 m, say) or overflows: the exact remainder.
                 const real r = std::fmod(x[d] - spec_.lower[d], len);
                 x[d] = spec_.lower[d] + (r < 0 ? r + len : r);
             }

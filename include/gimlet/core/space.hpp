@@ -53,9 +53,9 @@ template <class Real, int Dim>
 /// a - c I for a 3x3 tensor, entry by entry as Eigen's expression `a - c * Identity()` forms it
 /// (a_ij - c * delta_ij, the product taken with 0 off the diagonal as well, so that signed zeros
 /// and NaNs come out the same, under the default floating-point model: not under -ffast-math).
-/// Written out because a unit that holds several solvers left that expression to an out-of-line
-/// Eigen loop, a call per particle with the tensors in memory (docs/performance.md, "Policies
-/// inlined into the material update").
+/// Written out because a unit that holds several solvers leaves that expression to an
+/// out-of-line Eigen loop, a call per particle with the tensors in memory (docs/performance.md,
+/// "Policies inlined into the material update").
 template <class Real>
 [[nodiscard]] GIMLET_INLINE Eigen::Matrix<Real, 3, 3> minus_identity(const Eigen::Matrix<Real, 3, 3>& a, Real c) {
     Eigen::Matrix<Real, 3, 3> r;

@@ -97,9 +97,9 @@ public:
         if (n_ == 0) return r;  // no disc and no hottest particle: the result's defaults say none
         allocate();
         // The passes run in one parallel region, with barriers between them: where idle threads
-        // sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers (48 against 5.5 us
-        // on two threads), and five regions a call took as long as the second thread saved
-        // (docs/performance.md, "The hot spot's passes in one region"). Each pass's shares are
+        // sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers, and a region per
+        // pass (five a call) would cost as much as the second thread saves (docs/performance.md,
+        // "The hot spot's passes in one region"). Each pass's shares are
         // set up where its size is known: the first in the constructor, the others by one
         // thread between the passes. The branches below are the same for every thread: `refine_`
         // and `go_` are written in a `single`, before the barrier that ends it.
@@ -509,7 +509,7 @@ private:
 
     // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
     // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
-    // 3^dim offsets and testing each cost a fifth of the search's instructions
+    // 3^dim offsets and testing each would cost a fifth of the search's instructions
     // (docs/performance.md, "The hot spot's bins").
     template <class F>
     void around(std::size_t i, F&& f) const {
@@ -653,7 +653,7 @@ template <class Solver>
     r.volume.assign(temperatures.size(), 0.0);
     // From 4096 particles the hot particles are found on the solver's threads, a block of
     // consecutive particles each, with their current volumes; the sums then run over them in
-    // particle order, as the serial pass summed them.
+    // particle order, as one serial pass would sum them.
     const std::size_t n = store.size();
     const int threads = gimlet::detail::threads_of(s);
     const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);

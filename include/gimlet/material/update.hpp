@@ -31,9 +31,9 @@ template <class P>
     using real = typename S::real;
     typename S::tensor3 s;
     if constexpr (S::dim == 2) {
-        // Entry by entry into the result: built by embed3 and moved, g++ 12 stored the tensor
-        // in 8-byte halves and read it back in 16-byte loads that straddle them, which the CPU
-        // cannot forward from its store buffer (docs/performance.md, "Four byte-identical
+        // Entry by entry into the result: built by embed3 and moved, the tensor is stored by
+        // g++ 12 in 8-byte halves and read back in 16-byte loads that straddle them, which the
+        // CPU cannot forward from its store buffer (docs/performance.md, "Four byte-identical
         // levers").
         const auto& a = p.template get<fields::stress>();
         s(0, 0) = a(0, 0), s(1, 0) = a(1, 0), s(2, 0) = real(0);
@@ -112,8 +112,8 @@ void update_material_point(const M& mat, const P& p,
     // The old stress and its deviator first, well before the strength policy reads them: built
     // entry by entry, they reach memory in 8-byte stores, and a 16-byte load of two of them
     // right after (g++ pairs entries in the rotation) waits for the stores to drain
-    // (store-to-load forwarding fails). Computed after F, that was 13-15 % of bench_lanes' update
-    // (docs/performance.md, "Stores the loads wait for").
+    // (store-to-load forwarding fails). Computed after F, the wait would be 13-15 % of
+    // bench_lanes' update (docs/performance.md, "Stores the loads wait for").
     const tensor3 sigma_old = stress3(p);
     tensor3 s = strength::deviator(sigma_old);
     // The midpoint (Cayley) form of F' = L F (Hughes & Winget 1980, eq. 14; docs/physics.md

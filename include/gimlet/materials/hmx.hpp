@@ -3,7 +3,7 @@
 /// \file
 /// The former name of gimlet/presets/hmx.hpp and of its namespace, kept for one release so that
 /// programs written against it still compile: include gimlet/presets/hmx.hpp and write
-/// gimlet::presets instead (the folder was renamed so that it no longer reads as material/).
+/// gimlet::presets instead (presets/ does not read as material/ at a glance).
 
 #include "gimlet/presets/hmx.hpp"
 

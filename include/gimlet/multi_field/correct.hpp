@@ -184,8 +184,9 @@ void correct(contact::node_view<S>& node, const L& law, Tally* tally = nullptr) 
                             slipping > real(0) ? std::min(real(1), vector(dp + normal * n).norm() / slipping) : real(0);
                     } else {
                         // The same fractions of this pass's normal relative velocity (approaching
-                        // or not) and slip: asking the law again on other velocities let it stick
-                        // where it had let slide, or hold where it had stopped part of the approach.
+                        // or not) and slip: asked again on other velocities, the law could stick
+                        // where it let the pair slide, or hold where it stopped part of the
+                        // approach.
                         dp = -normal_fraction[slot] * stop * n - slip_fraction[slot] * pair.reduced_mass() * slip;
                     }
                 }

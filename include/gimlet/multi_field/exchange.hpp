@@ -33,7 +33,7 @@ namespace gimlet::multi_field {
 //   velocities after the forces of the current stress.
 // - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
 //   (node_view::kept_pairs) and the others stay free, as in the grid update (engaging pairs
-//   afresh there changed a 500 m/s cavity collapse's energy by 3e-7 of the start).
+//   afresh there changes a 500 m/s cavity collapse's energy by 3e-7 of the start).
 // - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
 //   velocities the forces of the current stress would give (grid::force); then the pairs it
 //   engaged are constrained on the velocities the stress update will use. So USF engages

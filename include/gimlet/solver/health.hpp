@@ -62,8 +62,8 @@ struct pending_health {
 
 /// The first of the policies' own scalar fields the particle carries that is not finite (the
 /// out-of-plane stress, the temperature, the plastic strain and work, the compression rate),
-/// or nullptr. A temperature from a specific heat of 1e-316 J/(kg K) was infinite while every
-/// core field stayed finite (found by fuzzing). Users' own fields are theirs to check.
+/// or nullptr. A specific heat of 1e-316 J/(kg K) makes the temperature infinite while every
+/// core field stays finite. Users' own fields are theirs to check.
 template <class P>
 [[nodiscard]] const char* non_finite_policy_field(const P& p) {
     const char* bad = nullptr;

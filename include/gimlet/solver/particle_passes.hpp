@@ -26,7 +26,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(rea
 // whose update did not throw; after returns false for a broken particle. Returns the
 // lowest-numbered broken particle (n if none); an update's error is thrown for the
 // lowest-numbered particle once every particle is done, before the broken ones are reported
-// (as when the passes were separate).
+// (the order two separate passes would report them in).
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <class After>
 std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part>::material_pass(real dt, const std::vector<vector>& vg,
@@ -121,8 +121,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i
 
 // The step's last particle pass: the constitutive update from the grid velocities (MUSL,
 // USL), then what check_particles does (wrap, stop on a broken particle). A material error
-// is reported before a failed check, each for the lowest-numbered particle, as when the
-// passes were separate.
+// is reported before a failed check, each for the lowest-numbered particle, as two separate
+// passes would report them.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::finish_step(real dt, bool update_materials) {
     auto& x = particles_.template column<fields::position>();

@@ -25,7 +25,7 @@ void check_setup(const scene::scene<S, M>& sc, const solver_options<S>& options,
     require(!sc.bodies().empty(), "number of bodies", 0.0, ">= 1");
     // USF strains with the start-of-step velocities, and a one-sided wall decided there and
     // again after the forces would work on other velocities than the strain saw: the bar of
-    // tests/core/test_wall.cpp gained 8 % energy. Refused until the wall decides on USF's
+    // tests/core/test_wall.cpp gains 8 % energy. Refused until the wall decides on USF's
     // trial velocities, as contact does.
     for (int d = 0; d < S::dim; ++d)
         if (sc.grid().bc[d] == boundary::wall && options.scheme == update_scheme::usf)

@@ -157,7 +157,7 @@ private:
         // USF keeps the decision its stress was computed with: releasing a node there, or
         // engaging one the stress saw free, makes the forces work on other velocities than the
         // ones that strained the material (an energy source: Bardenhagen contact from a gap
-        // rebounded with 1.8x the energy it came in with).
+        // then rebounds with 1.8x the energy it came in with).
         core::timed(t.contact, [&] { resolve_contact(multi_field::pass::keep, dt); });
         core::timed(t.grid_to_particle, [&] { this->grid_to_particles(dt, false); });
         end_step(dt, false);

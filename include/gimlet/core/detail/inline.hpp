@@ -2,10 +2,10 @@
 #pragma once
 /// \file
 /// GIMLET_INLINE: asks the compiler to inline a small function of the per-particle hot path
-/// that it would otherwise call (g++ 12 kept embed3, deviator and jaumann_rotate out of line,
-/// about 20 % of an elastic step in calls and copies of 3x3 matrices; in a unit holding two
-/// solvers, von_mises::update and the isentrope's table look-up, a tenth of the HMX material
-/// update: docs/performance.md). Whether g++ inlines depends on how much the unit holds.
+/// that it would otherwise call (without it g++ 12 keeps embed3, deviator and jaumann_rotate
+/// out of line, about 20 % of an elastic step in calls and copies of 3x3 matrices; in a unit
+/// holding two solvers, von_mises::update and the isentrope's table look-up, a tenth of the HMX
+/// material update: docs/performance.md). Whether g++ inlines depends on how much the unit holds.
 ///
 /// GIMLET_COLD: the opposite, for what only an error reaches (building a message, throwing):
 /// kept out of line, so that the hot function that calls it stays small.

@@ -32,8 +32,8 @@ inline constexpr int gimp_stencil = 3;
 /// Branch by branch: a < l has t = 2l, p = l - a; the linear branch t = 2l, p = 0; the outer
 /// branch t = 1 + l - a, p = 0; beyond the support t = p = 0, so the weight and its derivative
 /// are exact zeros there, and every term is non-negative wherever p = 0.
-/// `inv_l` is 1/l, computed once per particle and axis: the divisions by l were most of the cost
-/// of the weights (the stencil's 3 nodes x 4 divisions per axis).
+/// `inv_l` is 1/l, computed once per particle and axis: dividing by l at every node would be
+/// most of the cost of the weights (the stencil's 3 nodes x 4 divisions per axis).
 /// \pre 0 < l <= 1/2 (the branches above only order that way for l <= 1/2).
 template <class Real>
 inline void gimp_kernel(Real r, Real l, Real inv_l, Real& w, Real& dw) noexcept {

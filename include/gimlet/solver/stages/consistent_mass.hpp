@@ -9,7 +9,7 @@
 /// M_ij = sum_p m_p S_ip S_jp is what the weak form gives; its rows sum to the lumped masses.
 /// With the lumped mass the grid is a dispersive lattice: short waves run slower than long ones,
 /// so a shock trails a train of grid-scale waves (the front overshoot of docs/equations.md).
-/// With the consistent mass that lag is 3.4 times smaller for uGIMP (tests/core/
+/// With the consistent mass that lag is 3.4 times smaller for uGIMP (tests/solver/
 /// test_consistent_mass.cpp), and the train goes.
 /// The solve is the iteration
 ///   a^(0) = f / m,   a^(j+1) = a^(0) + a^(j) - (M a^(j)) / m,
@@ -26,9 +26,9 @@
 /// acceleration, and the particles that reach it take part with their lumped mass (M's diagonal),
 /// so that M's columns still sum to the lumped masses and momentum stays exact. The contact law
 /// sets such a node's velocity after the momentum update; coupled to its neighbours through M,
-/// a field's edge node there had spread the free surface's acceleration, which the contact then
-/// overrides, into the cell behind it (a 1-D impact through the distance contact read 37 % under
-/// the plateau pressure in the first cell at k = 4; docs/equations.md).
+/// a field's edge node there would spread the free surface's acceleration, which the contact
+/// then overrides, into the cell behind it (a 1-D impact through the distance contact would
+/// read 37 % under the plateau pressure in the first cell at k = 4; docs/equations.md).
 
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/detail/shares.hpp"

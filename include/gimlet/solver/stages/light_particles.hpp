@@ -234,9 +234,9 @@ public:
 private:
     // A particle's reference density m_p / V_p^0: what lightness compares. It is its material's
     // density, so particles of one material are never light against each other, whatever their
-    // sizes (a mass test made a body seeded at 5 x 5 particles per cell light beside one seeded
-    // at 1, and its treatment then removed 9-16 % of the energy of their impact, where nothing
-    // was flung without it: docs/equations.md, "Light particles").
+    // sizes (a mass test would make a body seeded at 5 x 5 particles per cell light beside one
+    // seeded at 1, and its treatment would remove 9-16 % of the energy of their impact, where
+    // nothing is flung without it: docs/equations.md, "Light particles").
     template <class Store>
     [[nodiscard]] static real reference_density(const Store& particles, std::size_t i) {
         return particles.template column<fields::mass>()[i] / particles.template column<fields::volume0>()[i];

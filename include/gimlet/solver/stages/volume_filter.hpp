@@ -24,7 +24,7 @@
 ///
 /// The energy. Each particle keeps its thermal energy above the reference isentrope:
 /// e <- e + e_s(J_new) - e_s(J) (the material's thermal policy provides e_s: reference_energy).
-/// Projecting e with J would not do: the L2 projection is not convex and left a particle 5 K
+/// Projecting e with J would not do: the L2 projection is not convex and leaves a particle 5 K
 /// under the isentrope on a shock's first step. That move changes sum_p m_p e_s(J_p); where a
 /// pattern is removed it lowers it (the isentrope is convex), and that energy is returned as
 /// heat through the nodes where it was released: each node's sum of the particles' releases, the
