@@ -108,7 +108,7 @@ void mms_all(const std::vector<int>& resolutions, const std::vector<int>& ppcs, 
 // consistent-mass iterations, (0.12, 2.4); not with USL, which refuses the consistent mass).
 void impact(const std::vector<double>& cells_mm, const char* config, int consistent_mass, double b1, double b2) {
     using enum gimlet::update_scheme;
-    const auto mat = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(b2, b1));
+    const auto mat = gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(b2, b1));
     for (const auto scheme : {musl, usl, usf}) {
         if (consistent_mass > 0 && scheme == usl) continue;
         for (const double cell : cells_mm) {

@@ -18,7 +18,7 @@ using mg = gimlet::eos::mie_gruneisen<>;
 using heating = gimlet::thermal::isentrope_temperature;  // make_hmx()'s default
 
 struct hmx_parts {
-    gimlet::materials::hmx_constants c;
+    gimlet::presets::hmx_constants c;
     double shear = gimlet::elastic_moduli::from_young_poisson(c.young, c.poisson).shear;
     [[nodiscard]] gimlet::strength::von_mises plastic() const { return {shear, c.yield_stress, c.hardening}; }
     [[nodiscard]] gimlet::strength::linear_elastic elastic() const { return gimlet::strength::linear_elastic{shear}; }
@@ -75,7 +75,7 @@ int main(int argc, char** argv) try {
     using namespace gimlet;
     const hmx_parts h;
     std::printf("variant,bytes_per_particle,particles,steps,threads,median_s,mups\n");
-    run<contact::distance>("full HMX: plasticity + heating + viscosity + distance contact", materials::make_hmx(), cell, steps,
+    run<contact::distance>("full HMX: plasticity + heating + viscosity + distance contact", presets::make_hmx(), cell, steps,
                            repeats, threads);
     run<contact::distance>("heating off", material<strength::von_mises, mg, thermal::none, viscosity::bulk>{
                                               h.c.density, h.plastic(), h.eos(), {}, viscosity::bulk{}},
@@ -87,34 +87,34 @@ int main(int argc, char** argv) try {
                                                  h.c.density, h.elastic(), h.eos(), h.heat(), viscosity::bulk{}},
                            cell, steps, repeats, threads);
     run<contact::distance>("paper's Walsh-Christian heating (instead of the isentrope temperature)",
-                           materials::make_hmx<eos::energy_reference::internal_energy, materials::paper_temperature>(),
+                           presets::make_hmx<eos::energy_reference::internal_energy, presets::paper_temperature>(),
                            cell, steps, repeats, threads);
     auto options = [](auto&& set) {
         solver_options<S> opt;
         set(opt);
         return opt;
     };
-    run<contact::distance>("volumetric average on (solver_options)", materials::make_hmx(), cell, steps, repeats, threads,
+    run<contact::distance>("volumetric average on (solver_options)", presets::make_hmx(), cell, steps, repeats, threads,
                            options([](auto& o) { o.volumetric_average = true; }));
     // The particle-scale options of docs/equations.md: each adds passes over the particles and nodes.
-    run<contact::distance>("consistent-mass accelerations with k = 1 (solver_options)", materials::make_hmx(), cell, steps,
+    run<contact::distance>("consistent-mass accelerations with k = 1 (solver_options)", presets::make_hmx(), cell, steps,
                            repeats, threads, options([](auto& o) { o.consistent_mass_iterations = 1; }));
-    run<contact::distance>("consistent-mass accelerations with k = 4 (solver_options)", materials::make_hmx(), cell, steps,
+    run<contact::distance>("consistent-mass accelerations with k = 4 (solver_options)", presets::make_hmx(), cell, steps,
                            repeats, threads, options([](auto& o) { o.consistent_mass_iterations = 4; }));
-    run<contact::distance>("volume filter with k = 4 (solver_options)", materials::make_hmx(), cell, steps, repeats,
+    run<contact::distance>("volume filter with k = 4 (solver_options)", presets::make_hmx(), cell, steps, repeats,
                            threads, options([](auto& o) {
                                o.consistent_mass_iterations = 4;
                                o.volume_filter = true;
                            }));
     // Self-contact costs what its per-step passes cost even where no void closes (here none).
-    run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
-        "self-contact on (multi_field::self_contact; no void in this scene)", materials::make_hmx(), cell, steps,
+    run<contact::distance, presets::hmx_material<>, multi_field::self_contact>(
+        "self-contact on (multi_field::self_contact; no void in this scene)", presets::make_hmx(), cell, steps,
         repeats, threads);
-    run<contact::distance, materials::hmx_material<>, multi_field::self_contact>(
-        "self-contact compiled in but enabled = false", materials::make_hmx(), cell, steps, repeats, threads, {},
+    run<contact::distance, presets::hmx_material<>, multi_field::self_contact>(
+        "self-contact compiled in but enabled = false", presets::make_hmx(), cell, steps, repeats, threads, {},
         false);
-    run<contact::single_field>("single-field contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
-    run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", materials::make_hmx(), cell, steps, repeats, threads);
+    run<contact::single_field>("single-field contact (instead of distance)", presets::make_hmx(), cell, steps, repeats, threads);
+    run<contact::bardenhagen>("Bardenhagen contact (instead of distance)", presets::make_hmx(), cell, steps, repeats, threads);
     run<contact::single_field>("all off: elastic + Mie-Grueneisen + single field",
                                material<strength::linear_elastic, mg>{h.c.density, h.elastic(), h.eos(), {}, {}}, cell,
                                steps, repeats, threads);

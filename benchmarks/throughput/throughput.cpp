@@ -81,10 +81,10 @@ int main(int argc, char** argv) try {
         r = time_scene<solver>([&] { return solver(bench::two_blocks(bench::reference_material(), cell, 4e-3), opt); },
                                dt, steps, repeats);
     } else if (scene == "hmx") {
-        using material = gimlet::materials::hmx_material<>;
+        using material = gimlet::presets::hmx_material<>;
         using solver = gimlet::solver<bench::S2, gimlet::shape::ugimp, material, gimlet::contact::distance,
                                       gimlet::field_list<>, gimlet::multi_field::self_contact>;
-        const auto hmx = gimlet::materials::make_hmx({}, gimlet::viscosity::bulk(example::hmx_defaults::viscosity_quadratic,
+        const auto hmx = gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(example::hmx_defaults::viscosity_quadratic,
                                                                                  example::hmx_defaults::viscosity_linear));
         r = time_scene<solver>([&] { return solver(bench::two_blocks(hmx, cell, 0.0), opt); }, dt, steps, repeats);
     } else {

@@ -67,8 +67,8 @@ void write_header(std::ostream& os) {
           "lower_cavity_open,lower_axial_chord_mm,lower_lateral_chord_mm,lower_closing_speed_m_s,"
           "lower_upstream_wall_speed_m_s,upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,"
           "upper_closing_speed_m_s,upper_upstream_wall_speed_m_s";
-    for (double dt : hot_excess) os << ",hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
-    for (double dt : hot_excess) os << ",hot_area_above_TEP_plus_" << int(dt) << "K_mm2";
+    for (double excess : hot_excess) os << ",hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
+    for (double excess : hot_excess) os << ",hot_area_above_TEP_plus_" << int(excess) << "K_mm2";
     os << '\n';
 }
 
@@ -207,7 +207,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
           "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter";
-    for (double dt : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(dt) << "K_kg_m";
+    for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
@@ -327,7 +327,8 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         pvd.emplace(pvd_path);
     } else {
         auto v = gimlet::io::load_checkpoint(io.restart, sol);
-        // Checkpoints written before these flags existed ran with the defaults of that time.
+        // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2) and no
+        // volume filter.
         v.try_emplace("consistent_mass", 0.0);
         v.try_emplace("viscosity_linear", 0.06);
         v.try_emplace("viscosity_quadratic", 1.2);

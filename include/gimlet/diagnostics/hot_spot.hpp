@@ -46,7 +46,7 @@ struct hot_spot_workspace {
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
     std::vector<std::size_t> bin, cursor, start, block_hottest, sorted_index;
     std::vector<std::uint8_t> block_hot;
-    std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_ring;
+    std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_rim;
     std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
 };
 
@@ -56,8 +56,8 @@ namespace detail {
 /// the order run() calls them:
 ///  - binning: the particles' box and hottest particle (find_extent), the bins of side `radius`
 ///    and which of them can hold a sought disc (choose_bins; with no `above`, find_floor and
-///    mark_hot_bins narrow them), and a counting sort of the kept particles by bin
-///    (sort_into_bins);
+///    mark_hot_bins narrow them; keep_bins sets the ranges kept and the sort's arrays), and a
+///    counting sort of the kept particles by bin (sort_into_bins);
 ///  - the candidate search: every kept centre whose bins could hold the hottest disc
 ///    (search_centres);
 ///  - the disc sums: one centre's mean temperature (disc), summed relative to its bins' hottest
@@ -88,7 +88,7 @@ public:
           threads_(gimlet::detail::threads_of(s)),
           blocks_(gimlet::detail::observer_blocks(n_, threads_)),
           team_(blocks_ > 1 ? threads_ : 1),
-          bounds_pass_(static_cast<std::ptrdiff_t>(blocks_), team_),
+          extent_pass_(static_cast<std::ptrdiff_t>(blocks_), team_),
           w_(work) {}
 
     [[nodiscard]] hot_spot_result<vector> run() {
@@ -169,9 +169,10 @@ private:
 
     // Per block: the box of its particles, its hottest particle (the first of its largest
     // temperatures, NaN never taken; `none` where the block has only NaN), and the box of its
-    // particles hotter than `wanted_` (only a disc near one of those can be sought).
+    // particles hotter than `wanted_` (only a disc near one of those can be sought; mark_hot_bins
+    // reuses block_hot_lo and block_hot_hi for the particles at least hot_floor_ hot).
     void find_extent() {
-        gimlet::detail::for_each_block_of(bounds_pass_, n_, blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
+        gimlet::detail::for_each_block_of(extent_pass_, n_, blocks_, [&](std::size_t b, std::size_t first, std::size_t last) {
             vector lo_b = x_[0], hi_b = x_[0], hot_lo_b = x_[0], hot_hi_b = x_[0];
             std::size_t h = none;
             bool hot = false;
@@ -234,11 +235,11 @@ private:
                 vector hot_lo = x_[hottest_], hot_hi = x_[hottest_];
                 for (std::size_t b = 0; b < blocks_; ++b)
                     if (w_.block_hot[b]) hot_lo = hot_lo.cwiseMin(w_.block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(w_.block_hot_hi[b]);
-                prepare(hot_lo, hot_hi);
+                keep_bins(hot_lo, hot_hi);
             } else {
                 w_.block_mass.assign(blocks_, 0.0);
                 w_.block_excess.assign(blocks_, 0.0);
-                w_.block_ring.assign(blocks_, 0.0);
+                w_.block_rim.assign(blocks_, 0.0);
                 w_.hot_bin.assign(blocks_ * total_, 0);  // a row per block: no two threads write one byte
                 near_pass_.emplace(static_cast<std::ptrdiff_t>(blocks_), team_);
                 mark_pass_.emplace(static_cast<std::ptrdiff_t>(blocks_), team_);
@@ -251,7 +252,7 @@ private:
 
     // One thread: the kept and tried bins' ranges around the box [hot_lo, hot_hi] of the hot
     // particles, and the sort's arrays.
-    void prepare(const vector& hot_lo, const vector& hot_hi) {
+    void keep_bins(const vector& hot_lo, const vector& hot_hi) {
         for (int d = 0; d < dim; ++d) {
             const std::size_t a = bin_of(hot_lo, d), z = bin_of(hot_hi, d);
             keep_lo_[d] = a >= 2 ? a - 2 : 0;
@@ -305,7 +306,7 @@ private:
             }
             w_.block_mass[b] = mass;
             w_.block_excess[b] = excess;
-            w_.block_ring[b] = rim;
+            w_.block_rim[b] = rim;
         });
         GIMLET_OMP(barrier)
         GIMLET_OMP(single)
@@ -314,8 +315,8 @@ private:
             bool nan_rim = false;
             for (std::size_t b = 0; b < blocks_; ++b) {
                 mass += w_.block_mass[b], excess += w_.block_excess[b];
-                if (std::isnan(w_.block_ring[b])) nan_rim = true;
-                else rim = std::min(rim, w_.block_ring[b]);
+                if (std::isnan(w_.block_rim[b])) nan_rim = true;
+                else rim = std::min(rim, w_.block_rim[b]);
             }
             const double bound = std::min(ref + excess / mass, rim);
             if (std::isfinite(bound) && !nan_rim) hot_floor_ = bound - 1e-6 * (std::abs(bound) + std::abs(ref - bound));
@@ -356,7 +357,7 @@ private:
             try {
                 w_.keep_bin.assign(total_, 0);
                 w_.try_bin.assign(total_, 0);
-                prepare(hot_lo, hot_hi);
+                keep_bins(hot_lo, hot_hi);
                 // Each hot bin marks the bins within two (kept) and one (tried).
                 cell_index from{}, to{};
                 for (int d = 0; d < dim; ++d) from[d] = bin_of(hot_lo, d), to[d] = bin_of(hot_hi, d);
@@ -561,7 +562,7 @@ private:
     const int threads_;
     const std::size_t blocks_;
     const int team_;
-    gimlet::detail::thread_shares bounds_pass_;
+    gimlet::detail::thread_shares extent_pass_;
     std::optional<gimlet::detail::thread_shares> near_pass_, mark_pass_, count_pass_, copy_pass_, merge_pass_;
     hot_spot_workspace<vector>& w_;
     // The bins: the particles' box, the count per axis and in all, and the blocks of the sort.

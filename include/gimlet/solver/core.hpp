@@ -37,18 +37,13 @@
 #include "gimlet/solver/time_step.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <chrono>
 #include <concepts>
 #include <cmath>
 #include <cstdint>
-#include <exception>
-#include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -230,7 +225,7 @@ private:
             const std::size_t body = particles_.template column<fields::body>()[i];
             if constexpr (fields_per_body == 1) return fixed_entry{body * grid_.size()};
             else
-                return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), fields_.sides(i),
+                return chosen_entry{body * fields_per_body * grid_.size(), grid_.size(), field_choice_.sides(i),
                                     consistent_mass_.list(i)};
         }
     }
@@ -295,8 +290,8 @@ private:
     // An empty grid (with volumetric averaging, the cells' mean stresses for the step's first
     // force map).
     void start_grid();
-    // The stages' own: the light particles (stages::light_particles) after the first scatter,
-    // the nodes several fields share (multi_field::exchange) for the contact passes.
+    // After the first scatter: the light particles (stages::light_particles), and the nodes
+    // several fields share (multi_field::exchange) for the contact passes.
     void find_light_particles();
     void find_shared_nodes();  // below the class
     // USF's start-of-step grid velocities v^n (and v^{n+1} = v^n until the forces act), walls
@@ -352,7 +347,7 @@ private:
     // split between the threads on a large grid; f(e) writes entry e only.
     template <class F>
     void for_each_swept_entry(F&& f);
-    [[nodiscard]] std::size_t swept_fields() const noexcept { return fields_.swept(); }
+    [[nodiscard]] std::size_t swept_fields() const noexcept { return field_choice_.swept(); }
     // v^n (with_old_velocity), the consistent mass's forces (stages::consistent_mass), the
     // momentum update and v^{n+1}, the walls.
     void update_grid_momentum(real dt, bool with_old_velocity);
@@ -474,7 +469,7 @@ private:
     multi_field::exchange<S> exchange_;  // multi-field contact only (empty otherwise)
 
     // The optional stages, each with its own state (solver/stages/).
-    stages::field_choice<fields_per_body, stencil_type::nodes> fields_;
+    stages::field_choice<fields_per_body, stencil_type::nodes> field_choice_;
     stages::light_particles<S> lights_;
     stages::consistent_mass<S, stencil_type::nodes> consistent_mass_;
     stages::volume_filter<S> volume_filter_;
@@ -557,7 +552,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::check_step_start() {
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::group_into_slabs() {
     slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
-    fields_.prepare(*this);
+    field_choice_.prepare(*this);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

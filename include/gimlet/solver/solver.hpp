@@ -170,7 +170,7 @@ private:
     // fields, an empty grid.
     void begin_step() {
         auto& t = this->timings_;
-        core::timed(t.material_update, [&] { this->check_step_start(); });  // where the checks are in every other step
+        core::timed(t.material_update, [&] { this->check_step_start(); });  // the phase of finish_step's checks
         // The weights are recomputed from the positions every step, even though the previous
         // step's last pass could have computed them: a caller may change positions through a
         // reference to the store kept from an earlier particles() call, which no flag sees.
@@ -269,7 +269,7 @@ void solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt) {
         case update_scheme::usl: usl_step(dt); break;
         case update_scheme::usf: usf_step(dt); break;
     }
-    this->fields_.completed();  // reached only when the step completes
+    this->field_choice_.completed();  // reached only when the step completes
 }
 
 }  // namespace gimlet

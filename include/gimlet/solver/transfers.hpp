@@ -152,12 +152,12 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real 
 // The FLIP update gives particle p the acceleration f_i / m_i of each node with weight S_ip,
 // which conserves momentum exactly: sum_p S_ip m_p f_i / m_i = f_i. A node under the mass
 // cut-off is never divided by, so its force would be dropped, and momentum lost with it
-// (6.7e-9 of a fragment's |m v| in the sparse-cloud hard case; 1e-12 of a body's in a
-// 700 m/s cavity collapse, where the GIMP gradient at a support's edge is not small where
-// the weight is). Each particle takes back its own part of it instead,
-// dv_p += dt f_ip / m_p with f_ip = S_ip m_p b - V_p sigma_p G_ip, as far as the walls leave
-// it free: sum_p m_p dv_p = dt f_i, and f_ip / m_p = S_ip b - sigma_p G_ip / rho_p is bounded
-// by the particle's own state (docs/equations.md, "Light nodes").
+// (6.7e-9 of a fragment's |m v| in the sparse cloud of tests/robustness/test_hard_cases.cpp,
+// "near-empty nodes"; 1e-12 of a body's in a 700 m/s cavity collapse, where the GIMP gradient
+// at a support's edge is not small where the weight is). Each particle takes back its own part
+// of it instead, dv_p += dt f_ip / m_p with f_ip = S_ip m_p b - V_p sigma_p G_ip, as far as the
+// walls leave it free: sum_p m_p dv_p = dt f_i, and f_ip / m_p = S_ip b - sigma_p G_ip / rho_p
+// is bounded by the particle's own state (docs/equations.md, "Light nodes").
 
 // Whether node entry e, with particle weight w and gradient g, is a light node of the
 // particle's (a stencil node it neither weighs nor pushes is not).

@@ -31,7 +31,7 @@ namespace gimlet::stages {
 /// old velocities. Writes: the particle's velocity and specific internal energy (blend). It
 /// holds no state: the blend is a term of G2P's per-particle loop, where the stencil's
 /// velocities are at hand; a pass of its own would read them again. Chosen at run time
-/// (solver_options::pic_fraction > 0); off, G2P tests one flag per particle.
+/// (solver_options::pic_fraction > 0); off, G2P tests a flag per particle and per stencil node.
 ///
 /// \tparam S the space.
 template <Space S>

@@ -29,7 +29,9 @@ namespace gimlet::stages {
 /// split_rows and side). Writes: the partition's own state (its prepare), the sides every
 /// transfer of the step reads (Core::entries) and the swept slots every node pass reads.
 /// Chosen at compile time: a partition of one field per body (multi_field::by_body) has nothing
-/// to choose, and only its optional prepare is called.
+/// to choose, and only its optional prepare is called. Then at run time: a partition of several
+/// fields per body says each step whether it splits anything (splits(); self-contact's
+/// `enabled`), and a step where it does not sweeps one slot per body.
 ///
 /// \tparam FieldsPerBody the partition's fields per body.
 /// \tparam Nodes the nodes of a particle's stencil.

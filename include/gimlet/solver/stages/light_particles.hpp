@@ -7,8 +7,9 @@
 /// Where a dense particle has a tiny weight S at a node, the node's velocity increment
 /// dt f_i / m_i grows as 1/sqrt(S) (GIMP's gradient at the edge of a support is not small where
 /// the weight is). The dense particle reads it with weight S, harmlessly; a far less dense
-/// particle on the same node reads it with weight O(1) and is flung (52-115 km/s in the sparse-cloud hard
-/// case, det F down to 0). A light particle therefore reads each node by its reliability
+/// particle on the same node reads it with weight O(1) and is flung (52-115 km/s, det F down
+/// to 0, in the sparse cloud of tests/robustness/test_hard_cases.cpp, "near-empty nodes"). A
+/// light particle therefore reads each node by its reliability
 /// k_i = m_i / rho_i^max (the volume of the node's densest material its mass amounts to), for
 /// its velocity and for its velocity gradient, and the momentum it changes against FLIP goes back
 /// to the non-light particles of its nodes, so momentum stays exact.
@@ -40,7 +41,8 @@ namespace gimlet::stages {
 /// Writes: the light particles' position and velocity (move); its own per-node and
 /// per-particle state, read by G2P (heavy_mass, momentum) and the velocity gradient.
 /// Chosen at run time (solver_options::light_particle_ratio, and whether any particle can be
-/// light at all: possible()); off, it costs one test a step.
+/// light at all: possible()); off, it costs a test a step, and one per particle in the velocity
+/// gradient.
 ///
 /// \tparam S the space.
 template <Space S>

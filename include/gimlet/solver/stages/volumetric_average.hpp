@@ -21,7 +21,8 @@ namespace gimlet::stages {
 /// Reads: the particles' stresses, volumes, bodies and stencils, the number of bodies, the
 /// step's node entries and fields (stages::field_choice::side), the grid velocities given, and
 /// the light-particles stage's gradients. Writes: its own cell sums only. Chosen at run time
-/// (solver_options::volumetric_average); off, the schemes do not call it.
+/// (solver_options::volumetric_average); off, the schemes do not call it, and the velocity
+/// gradient and the force's stress test the option once per particle.
 ///
 /// \tparam S the space.
 template <Space S>
@@ -99,7 +100,7 @@ private:
         std::size_t flat = 0;
         for (int d = 0; d < dim; ++d) flat += std::size_t(c.stencils_[i].offset[d][0]);
         std::size_t block = c.particles_.template column<fields::body>()[i];
-        if constexpr (Core::fields_per_body > 1) block = block * Core::fields_per_body + c.fields_.side(i, 0);
+        if constexpr (Core::fields_per_body > 1) block = block * Core::fields_per_body + c.field_choice_.side(i, 0);
         return block * c.grid_.size() + flat;
     }
 
