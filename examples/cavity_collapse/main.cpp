@@ -30,6 +30,7 @@
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "cavity_collapse/flags.hpp"
 #include "common/cli.hpp"
+#include "common/particle_map.hpp"
 #include "common/plotter.hpp"
 #include "common/restart.hpp"
 
@@ -82,55 +83,6 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
     for (double m : r.hot_mass) os << ',' << m;
     for (double a : r.hot_area) os << ',' << a * 1e6;
     os << '\n';
-}
-
-// Particle map for the PNG figures: position, pressure, temperature, body. The numbers are
-// exact_numbers' (std::to_chars' shortest text that reads back to the same double), formatted
-// straight into a buffer, a block of consecutive particles on each of the run's threads, and
-// written in block order: the bytes a stream through exact_numbers writes, particle by particle,
-// in a fraction of its time, and on every thread (a serial pass would leave the others idle).
-// The whole map is held as text until it is written: about 80 bytes a particle.
-template <class Solver>
-void write_map(const std::filesystem::path& file, const Solver& sol) {
-    const auto& ps = sol.particles();
-    const std::size_t n = ps.size();
-    const int threads = sol.threads();
-    const std::size_t blocks = n >= cavity_collapse::parallel_from && threads > 1 ? std::size_t(threads) : 1;
-    const std::size_t size = (n + blocks - 1) / blocks;
-    std::vector<std::string> text(blocks);
-    // An exception must not leave the parallel region (that ends the program): a block's
-    // (an allocation that fails) is kept and thrown after it.
-    std::vector<std::exception_ptr> failed(blocks);
-    GIMLET_OMP(parallel for schedule(static, 1) num_threads(int(blocks)))
-    for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(blocks); ++b) {
-        try {
-            std::string& t = text[std::size_t(b)];
-            char buf[32];
-            auto put = [&](auto v, char end) {
-                t.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-                t += end;
-            };
-            const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
-            t.reserve((last - first) * 80);
-            for (std::size_t i = first; i < last; ++i) {
-                const auto p = ps[i];
-                const auto& x = p.template get<gimlet::fields::position>();
-                put(double(x[0] * 1e3), ',');
-                put(double(x[1] * 1e3), ',');
-                put(double(gimlet::mean_pressure(p) * 1e-6), ',');
-                put(double(p.template get<gimlet::fields::temperature>()), ',');
-                put(p.template get<gimlet::fields::body>(), '\n');
-            }
-        } catch (...) {
-            failed[std::size_t(b)] = std::current_exception();
-        }
-    }
-    for (const auto& e : failed)
-        if (e) std::rethrow_exception(e);
-    std::ofstream os(file);
-    os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
-    for (const auto& t : text) os.write(t.data(), std::streamsize(t.size()));
-    if (!os) throw std::runtime_error("could not write " + file.string());
 }
 
 // Takes the checkpoint at the first step at or after the requested time, after that step's
@@ -193,6 +145,49 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0},
             {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0}};
+}
+
+// Where each output stands: the series' rows and the snapshots written, and the next time of
+// each schedule. A checkpoint saves it; a restart gives it back.
+struct output_state {
+    std::size_t rows = 0, snapshot = 0, listed_next = 0;
+    double next_sample = 0, next_snapshot = 0, last_sample = -1;
+};
+
+// A restart: the particles from the checkpoint, whose flags must be this run's; where each
+// output stood, the monitor and the summary so far; the series and the snapshots' list cut
+// back to the checkpoint's rows (the interrupted run may have written more after it).
+template <class Solver>
+output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol, monitor& mon,
+                         summary& sum, const std::filesystem::path& out) {
+    auto v = gimlet::io::load_checkpoint(checkpoint, sol);
+    // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2) and no
+    // volume filter.
+    v.try_emplace("consistent_mass", 0.0);
+    v.try_emplace("viscosity_linear", 0.06);
+    v.try_emplace("viscosity_quadratic", 1.2);
+    v.try_emplace("volume_filter", 0.0);
+    for (const auto& [key, mine] : fixed_on_restart(s))
+        if (value_of(v, key, checkpoint) != mine)
+            throw std::invalid_argument("--restart " + checkpoint.string() + ": the checkpoint's " + key + " is " +
+                                        std::to_string(value_of(v, key, checkpoint)) + ", this run's is " +
+                                        std::to_string(mine) + "; restart with the original run's flags");
+    output_state at;
+    at.rows = std::size_t(value_of(v, "series_rows", checkpoint));
+    at.snapshot = std::size_t(value_of(v, "snapshots", checkpoint));
+    at.next_sample = value_of(v, "next_sample_s", checkpoint);
+    at.next_snapshot = value_of(v, "next_snapshot_s", checkpoint);
+    at.last_sample = value_of(v, "last_sample_s", checkpoint);
+    at.listed_next = std::size_t(value_of(v, "next_listed_snapshot", checkpoint));
+    mon.visit([&](const std::string& k, auto& x) {
+        x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "monitor." + k, checkpoint));
+    });
+    sum.visit([&](const std::string& k, auto& x) {
+        x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "summary." + k, checkpoint));
+    });
+    keep_lines(out / "series.csv", at.rows + 1);
+    keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
+    return at;
 }
 
 // summary.csv: the run's settings, its peaks and times, the health events and how it ended.
@@ -294,7 +289,6 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     const auto& out = io.out;
     monitor mon(s);
     summary sum;
-    std::size_t rows = 0, snapshot = 0;
     std::ofstream series, times;
     gimlet::io::vtp_writer_for<decltype(sol)> vtp;
     vtp.add("pressure", [](const auto& p) { return gimlet::mean_pressure(p); })
@@ -305,15 +299,14 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     std::filesystem::create_directories(out / "snapshots");
     const auto pvd_path = out / "snapshots" / "particles.pvd";
     std::optional<gimlet::io::pvd_writer> pvd;
-    double next_sample = 0, next_snapshot = 0, last_sample = -1;
-    std::size_t listed_next = 0;
+    output_state at;
 
     // What a checkpoint keeps besides the particles: where each output stands, the summary so
     // far, and the flags that must not change on a restart.
     auto save_values = [&] {
         gimlet::io::checkpoint_values v = fixed_on_restart(s);
-        v["series_rows"] = double(rows);
-        v["snapshots"] = double(snapshot);
+        v["series_rows"] = double(at.rows);
+        v["snapshots"] = double(at.snapshot);
         mon.visit([&](const std::string& k, auto& x) { v["monitor." + k] = double(x); });
         sum.visit([&](const std::string& k, auto& x) { v["summary." + k] = double(x); });
         return v;
@@ -326,32 +319,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         times << "index,time_us,time_after_contact_us\n";
         pvd.emplace(pvd_path);
     } else {
-        auto v = gimlet::io::load_checkpoint(io.restart, sol);
-        // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2) and no
-        // volume filter.
-        v.try_emplace("consistent_mass", 0.0);
-        v.try_emplace("viscosity_linear", 0.06);
-        v.try_emplace("viscosity_quadratic", 1.2);
-        v.try_emplace("volume_filter", 0.0);
-        for (const auto& [key, mine] : fixed_on_restart(s))
-            if (value_of(v, key, io.restart) != mine)
-                throw std::invalid_argument("--restart " + io.restart.string() + ": the checkpoint's " + key + " is " +
-                                            std::to_string(value_of(v, key, io.restart)) + ", this run's is " +
-                                            std::to_string(mine) + "; restart with the original run's flags");
-        rows = std::size_t(value_of(v, "series_rows", io.restart));
-        snapshot = std::size_t(value_of(v, "snapshots", io.restart));
-        next_sample = value_of(v, "next_sample_s", io.restart);
-        next_snapshot = value_of(v, "next_snapshot_s", io.restart);
-        last_sample = value_of(v, "last_sample_s", io.restart);
-        listed_next = std::size_t(value_of(v, "next_listed_snapshot", io.restart));
-        mon.visit([&](const std::string& k, auto& x) {
-            x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "monitor." + k, io.restart));
-        });
-        sum.visit([&](const std::string& k, auto& x) {
-            x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "summary." + k, io.restart));
-        });
-        keep_lines(out / "series.csv", rows + 1);
-        keep_lines(out / "snapshots" / "times.csv", snapshot + 1);
+        at = resume_from(io.restart, s, sol, mon, sum, out);
         series.open(out / "series.csv", std::ios::app);
         times.open(out / "snapshots" / "times.csv", std::ios::app);
         pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
@@ -375,8 +343,8 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         const sample r = mon.measure(so);
         write_row(series, r, s);
         sum.add(r, s);
-        ++rows;
-        last_sample = double(so.time());
+        ++at.rows;
+        at.last_sample = double(so.time());
         sampled = r, sampled_step = so.steps();
     };
     auto samples = gimlet::diagnostics::every_time(s.sample_every, take_sample);
@@ -392,27 +360,27 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                                                                          s.snapshots_after_contact.end());
     auto write_snapshot = [&](const auto& so) {
         char name[32];
-        std::snprintf(name, sizeof name, "map_%04zu.csv", snapshot);
-        write_map(out / "snapshots" / name, so);
+        std::snprintf(name, sizeof name, "map_%04zu.csv", at.snapshot);
+        example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from);
         pvd->write(vtp, so);
         const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
-        times << snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
-        if (io.figures) io.figures->map(snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);
-        ++snapshot;
+        times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
+        if (io.figures) io.figures->map(at.snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);
+        ++at.snapshot;
     };
     auto snapshots = gimlet::diagnostics::every_time(s.snapshot_every > 0 ? s.snapshot_every : 2 * s.end,
                                                      [&](const auto& so) {
         if (s.snapshot_every > 0) write_snapshot(so);
     });
-    listed_times listed{{}, listed_next, write_snapshot};
+    listed_times listed{{}, at.listed_next, write_snapshot};
     for (double t : s.snapshots_after_contact) listed.at.push_back(contact_time(s) + t);
-    if (!io.restart.empty()) samples.resume(next_sample), snapshots.resume(next_snapshot);
+    if (!io.restart.empty()) samples.resume(at.next_sample), snapshots.resume(at.next_snapshot);
     checkpointer ckpt{[&](double t) {
                           series.flush(), times.flush();
                           auto v = save_values();
                           v["next_sample_s"] = samples.next();
                           v["next_snapshot_s"] = snapshots.next();
-                          v["last_sample_s"] = last_sample;
+                          v["last_sample_s"] = at.last_sample;
                           v["next_listed_snapshot"] = double(listed.next);
                           v["listed_snapshots"] = double(listed.at.size());
                           gimlet::io::save_checkpoint(io.checkpoint, sol, v);
@@ -434,7 +402,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         std::fprintf(stderr, "cavity_collapse: %s\n", e.what());
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
+    if (at.last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
     series.close();
     times.close();
     if (!series || !times) throw std::runtime_error("could not write the series in " + out.string());
