@@ -58,6 +58,7 @@ struct settings {
     // plastic work +46 to +172 %).
     int consistent_mass = example::hmx_defaults::consistent_mass;
     bool volume_filter = false;      // solver_options::volume_filter (needs consistent_mass >= 1)
+    double cfl = gimlet::solver_options<S>{}.cfl;  // solver_options::cfl, the Courant number
     double viscosity_linear = example::hmx_defaults::viscosity_linear;
     double viscosity_quadratic = example::hmx_defaults::viscosity_quadratic;
     bool paper_temperature = false;  // the paper's temperature (chosen_temperature) instead of make_hmx()'s

@@ -21,7 +21,7 @@ inline constexpr const char* usage =
     "[--contact single|bardenhagen|distance] [--self-contact on|off] [--end-us T] [--sample-every-us T] "
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
     "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--volume-filter off|on] [--viscosity-linear B1] "
-    "[--viscosity-quadratic B2] [--temperature isentrope|paper] [--threads N] [--quiet] "
+    "[--viscosity-quadratic B2] [--cfl C] [--temperature isentrope|paper] [--threads N] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
 // The scene's settings from the flags; each refused by name (std::invalid_argument) if out of
@@ -43,10 +43,11 @@ inline settings read_settings(example::cli& args) {
     s.hot_spot_radius = 1e-3 * args.real("hot-spot-radius", 0.75, 0.0, 10.0);
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
-    const auto mv = example::read_mass_and_viscosity(args);
+    const auto mv = example::read_numerics(args);
     s.consistent_mass = mv.consistent_mass;
     s.viscosity_linear = mv.viscosity_linear;
     s.viscosity_quadratic = mv.viscosity_quadratic;
+    s.cfl = mv.cfl;
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
     s.paper_temperature = args.choice("temperature", "isentrope", {"isentrope", "paper"}) == "paper";
     {

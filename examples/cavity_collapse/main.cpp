@@ -8,7 +8,7 @@
 //                   [--snapshots-after-contact-us 4,8,14]
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
 //                   [--consistent-mass 4] [--volume-filter off|on] [--viscosity-linear 0.12]
-//                   [--viscosity-quadratic 2.4]
+//                   [--viscosity-quadratic 2.4] [--cfl 0.4]
 //                   [--temperature isentrope|paper] [--threads 0]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
@@ -144,7 +144,8 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"volumetric_average", s.volumetric_average ? 1.0 : 0.0}, {"pic_fraction", s.pic_fraction},
             {"paper_temperature", s.paper_temperature ? 1.0 : 0.0}, {"self_contact", s.self_contact ? 1.0 : 0.0},
             {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
-            {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0}};
+            {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0},
+            {"cfl", s.cfl}};
 }
 
 // Where each output stands: the series' rows and the snapshots written, and the next time of
@@ -161,12 +162,13 @@ template <class Solver>
 output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol, monitor& mon,
                          summary& sum, const std::filesystem::path& out) {
     auto v = gimlet::io::load_checkpoint(checkpoint, sol);
-    // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2) and no
-    // volume filter.
+    // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2), no volume
+    // filter and the Courant number 0.4.
     v.try_emplace("consistent_mass", 0.0);
     v.try_emplace("viscosity_linear", 0.06);
     v.try_emplace("viscosity_quadratic", 1.2);
     v.try_emplace("volume_filter", 0.0);
+    v.try_emplace("cfl", 0.4);
     for (const auto& [key, mine] : fixed_on_restart(s))
         if (value_of(v, key, checkpoint) != mine)
             throw std::invalid_argument("--restart " + checkpoint.string() + ": the checkpoint's " + key + " is " +
@@ -201,7 +203,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
-          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter";
+          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl";
     for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
@@ -216,7 +218,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
        << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
        << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
        << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
-       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off");
+       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off") << ',' << s.cfl;
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';
@@ -277,6 +279,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
     opt.consistent_mass_iterations = s.consistent_mass;
+    opt.cfl = s.cfl;
     opt.volume_filter = s.volume_filter;
     // Self-contact needs several fields per body, so a multi-field contact; off, its partition
     // keeps one field per body and the results are those of multi_field::by_body.

@@ -86,15 +86,44 @@ def colour_limits(values, lo):
     return lo, hi
 
 
+def domains(m, ok, spacing):
+    """The inverse of each kept particle's in-plane F (the identity where the map has no F, or
+    where F is singular or not finite: the particle is then painted as its initial square) and
+    the half-widths along x and y of its domain F [-h, h]^2 (h = 0.525 spacing), each at most
+    MAX_REACH spacings (a particle stretched further is painted in part)."""
+    half = 0.525 * spacing
+    n = int(ok.sum())
+    inv = np.tile(np.eye(2), (n, 1, 1))
+    ex = np.full(n, half)
+    ey = np.full(n, half)
+    if not all(k in m for k in F_COLUMNS):
+        return inv, ex, ey
+    a, b, c, d = (np.asarray(m[k], dtype=float)[ok] for k in F_COLUMNS)
+    det = a * d - b * c
+    good = np.isfinite(det) & (np.abs(det) > 1e-9)
+    inv[good] = np.stack([np.stack([d, -b], -1), np.stack([-c, a], -1)], -2)[good] / det[good, None, None]
+    ex[good] = np.minimum(half * (np.abs(a) + np.abs(b))[good], MAX_REACH * spacing)
+    ey[good] = np.minimum(half * (np.abs(c) + np.abs(d))[good], MAX_REACH * spacing)
+    return inv, ex, ey
+
+
+F_COLUMNS = ("F_xx", "F_xy", "F_yx", "F_yy")
+MAX_REACH = 3  # spacings: the largest half-width of a particle's painted domain
+
+
 def raster(m, key, spacing):
-    """The particles of map m painted as an image: each particle a square of side 1.05 x its
-    spacing in the colour of m[key], on pixels of half the spacing (about 2000 a side at most),
-    empty pixels NaN (left blank). Where two squares overlap, a pixel takes the colour of one of
-    them (the squares are painted offset by offset, each offset in the particles' order). A
-    particle far from the rest (flung off) would shrink the material to a few pixels: the image
-    covers the 0.1-99.9 % range of the places on each axis, widened by a twentieth of it and two
-    spacings, and leaves out what lies beyond. Returns (image, extent) for
-    imshow(origin="lower"), or None if no particle has a finite place.
+    """The particles of map m painted as an image: each particle its current domain, its initial
+    square (side 1.05 x its spacing, so that neighbours overlap) mapped by its deformation
+    gradient F (the map's F_* columns; without them, the square itself), in the colour of
+    m[key], on pixels of half the spacing (about 2000 a side at most), empty pixels NaN (left
+    blank). A pixel is painted where its centre lies in the domain. Where the lattice has
+    rotated, sheared or stretched, the domains still tile the material, so only a gap wider
+    than the pixels shows; axis-aligned squares would leave blank seams there. Where two domains
+    overlap, a pixel takes the colour of one of them (painted offset by offset, each offset in
+    the particles' order). A particle far from the rest (flung off) would shrink the material to
+    a few pixels: the image covers the 0.1-99.9 % range of the places on each axis, widened by a
+    twentieth of it and two spacings, and leaves out what lies beyond. Returns (image, extent)
+    for imshow(origin="lower"), or None if no particle has a finite place.
 
     An image instead of a scatter of one marker per particle: drawing 54,000 markers a panel is
     most of the figures' time, and markers under a pixel wide leave a moire of blank specks where
@@ -107,22 +136,31 @@ def raster(m, key, spacing):
         lo, hi = quantile(c[ok], 0.001), quantile(c[ok], 0.999)
         margin = 0.05 * (hi - lo) + 2 * spacing
         ok &= (c >= lo - margin) & (c <= hi + margin)
-    x, y, v = x[ok], y[ok], v[ok]
     half = 0.525 * spacing
-    x0, y0 = x.min() - half, y.min() - half
-    px = max(spacing / 2, (x.max() + half - x0) / 2000, (y.max() + half - y0) / 2000)
-    nx = int((x.max() + half - x0) / px) + 1
-    ny = int((y.max() + half - y0) / px) + 1
+    inv, ex, ey = domains(m, ok, spacing)
+    x, y, v = x[ok], y[ok], v[ok]
+    x0, y0 = (x - ex).min(), (y - ey).min()
+    width, height = (x + ex).max() - x0, (y + ey).max() - y0
+    px = max(spacing / 2, width / 2000, height / 2000)
+    nx = int(width / px) + 1
+    ny = int(height / px) + 1
     image = np.full((ny, nx), np.nan, dtype=np.float32)
-    # Every pixel the square [x - half, x + half] reaches, in at most `span` steps per axis.
-    ix0 = ((x - half - x0) / px).astype(int)
-    iy0 = ((y - half - y0) / px).astype(int)
-    ix1 = np.minimum(((x + half - x0) / px).astype(int), nx - 1)
-    iy1 = np.minimum(((y + half - y0) / px).astype(int), ny - 1)
+    # Every pixel of the domain's bounding box, in at most `span` steps per axis; painted where
+    # the pixel's centre, taken back through F, lies in the initial square.
+    ix0 = ((x - ex - x0) / px).astype(int)
+    iy0 = ((y - ey - y0) / px).astype(int)
+    ix1 = np.minimum(((x + ex - x0) / px).astype(int), nx - 1)
+    iy1 = np.minimum(((y + ey - y0) / px).astype(int), ny - 1)
     span = int(max((ix1 - ix0).max(), (iy1 - iy0).max()))
     for a in range(span + 1):
+        ix = np.minimum(ix0 + a, ix1)
+        dx = x0 + (ix + 0.5) * px - x
         for b in range(span + 1):
-            image[np.minimum(iy0 + b, iy1), np.minimum(ix0 + a, ix1)] = v
+            iy = np.minimum(iy0 + b, iy1)
+            dy = y0 + (iy + 0.5) * px - y
+            inside = (np.abs(inv[:, 0, 0] * dx + inv[:, 0, 1] * dy) <= half) & \
+                     (np.abs(inv[:, 1, 0] * dx + inv[:, 1, 1] * dy) <= half)
+            image[iy[inside], ix[inside]] = v[inside]
     return image, (x0, x0 + nx * px, y0, y0 + ny * px)
 
 

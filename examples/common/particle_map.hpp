@@ -20,12 +20,14 @@
 namespace example {
 
 // A particle map for figures, one CSV row per particle: position (mm), mean pressure (MPa),
-// temperature (K), body. The numbers are
+// temperature (K), body and the in-plane deformation gradient F (cavity_collapse's plot.py
+// paints each particle as its current domain, its initial square mapped by F, so that only a
+// real gap shows; docs/io.md, "The flagship's particle maps"). The numbers are
 // exact_numbers' (std::to_chars' shortest text that reads back to the same double), formatted
 // straight into a buffer, a block of consecutive particles on each of the run's threads, and
 // written in block order: the bytes a stream through exact_numbers writes, particle by particle,
 // in a fraction of its time, and on every thread (a serial pass would leave the others idle).
-// The whole map is held as text until it is written: about 80 bytes a particle.
+// The whole map is held as text until it is written: about 160 bytes a particle.
 // From `parallel_from` particles the rows are formatted on the solver's threads.
 template <class Solver>
 void write_particle_map(const std::filesystem::path& file, const Solver& sol, std::size_t parallel_from) {
@@ -48,7 +50,7 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
                 t += end;
             };
             const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
-            t.reserve((last - first) * 80);
+            t.reserve((last - first) * 160);
             for (std::size_t i = first; i < last; ++i) {
                 const auto p = ps[i];
                 const auto& x = p.template get<gimlet::fields::position>();
@@ -56,7 +58,12 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
                 put(double(x[1] * 1e3), ',');
                 put(double(gimlet::mean_pressure(p) * 1e-6), ',');
                 put(double(p.template get<gimlet::fields::temperature>()), ',');
-                put(p.template get<gimlet::fields::body>(), '\n');
+                put(p.template get<gimlet::fields::body>(), ',');
+                const auto& F = p.template get<gimlet::fields::deformation_gradient>();
+                put(double(F(0, 0)), ',');
+                put(double(F(0, 1)), ',');
+                put(double(F(1, 0)), ',');
+                put(double(F(1, 1)), '\n');
             }
         } catch (...) {
             failed[std::size_t(b)] = std::current_exception();
@@ -65,7 +72,7 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
     for (const auto& e : failed)
         if (e) std::rethrow_exception(e);
     std::ofstream os(file);
-    os << "x_mm,y_mm,pressure_MPa,temperature_K,body\n";
+    os << "x_mm,y_mm,pressure_MPa,temperature_K,body,F_xx,F_xy,F_yx,F_yy\n";
     for (const auto& t : text) os.write(t.data(), std::streamsize(t.size()));
     if (!os) throw std::runtime_error("could not write " + file.string());
 }

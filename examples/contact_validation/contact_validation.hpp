@@ -29,6 +29,7 @@ struct settings {
     int consistent_mass = 0;           // solver_options::consistent_mass_iterations
     double viscosity_linear = 0.06;    // viscosity::bulk's b1
     double viscosity_quadratic = 1.2;  // viscosity::bulk's b2
+    double cfl = gimlet::solver_options<gimlet::space<2>>{}.cfl;  // solver_options::cfl
 };
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
@@ -96,6 +97,7 @@ result run(const settings& s, const std::string& name, const Contact& contact = 
     gimlet::solver_options<S> opt;
     opt.threads = s.threads;
     opt.consistent_mass_iterations = s.consistent_mass;
+    opt.cfl = s.cfl;
     gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, contact);
     sol.run_until(s.time);
     result r;

@@ -5,7 +5,7 @@
 // at the interface for the first two and none for its own.
 //
 //   contact_validation [--velocity 300] [--cell 0.5] [--time-us 14] [--consistent-mass 4]
-//                      [--viscosity-linear 0.12] [--viscosity-quadratic 2.4] [--threads 0]
+//                      [--viscosity-linear 0.12] [--viscosity-quadratic 2.4] [--cfl 0.4] [--threads 0]
 //                      [--output results/contact_validation]
 //
 // The mass matrix and the viscosity default to the HMX examples' pair, as in cavity_collapse
@@ -27,15 +27,16 @@
 int main(int argc, char** argv) try {
     example::cli args(argc, argv,
                       "usage: contact_validation [--velocity V_m_s] [--cell H_mm] [--time-us T] [--consistent-mass K] "
-                      "[--viscosity-linear B1] [--viscosity-quadratic B2] [--threads N] [--output DIR]");
+                      "[--viscosity-linear B1] [--viscosity-quadratic B2] [--cfl C] [--threads N] [--output DIR]");
     contact_validation::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.5, 0.0, 4.0);
     s.time = 1e-6 * args.real("time-us", 14.0, 0.0, 40.0);
-    const auto mv = example::read_mass_and_viscosity(args);
+    const auto mv = example::read_numerics(args);
     s.consistent_mass = mv.consistent_mass;
     s.viscosity_linear = mv.viscosity_linear;
     s.viscosity_quadratic = mv.viscosity_quadratic;
+    s.cfl = mv.cfl;
     s.threads = args.integer("threads", 0, 0, 256);
     const auto out = args.directory("output", "results/contact_validation");
     args.finish();
@@ -49,7 +50,7 @@ int main(int argc, char** argv) try {
     std::ofstream summary(out / "summary.csv");
     gimlet::io::exact_numbers(summary);
     summary << "policy,interface_peak_over_plateau,particle_peak_over_plateau,interface_peak_Pa,plateau_Pa,"
-               "velocity_m_s,cell_mm,time_us,max_eta,consistent_mass,viscosity_linear,viscosity_quadratic";
+               "velocity_m_s,cell_mm,time_us,max_eta,consistent_mass,viscosity_linear,viscosity_quadratic,cfl";
     for (const char* name : gimlet::health_events::names) summary << ",events_" << name;
     summary << '\n';
     std::printf("contact_validation: HMX blocks at +-%.0f m/s, cell %.3f mm, t = %.2f us, consistent mass %d, "
@@ -65,7 +66,7 @@ int main(int argc, char** argv) try {
         summary << r.policy << ',' << r.peak_over_plateau << ',' << r.particle_peak_over_plateau << ','
                 << r.interface_peak << ',' << r.plateau << ',' << s.velocity << ',' << s.cell * 1e3 << ','
                 << s.time * 1e6 << ',' << r.max_eta << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
-                << s.viscosity_quadratic;
+                << s.viscosity_quadratic << ',' << s.cfl;
         for (const auto n : r.health.count) summary << ',' << n;
         summary << '\n';
         for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)

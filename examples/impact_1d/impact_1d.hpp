@@ -35,6 +35,7 @@ struct settings {
     double pic_fraction = 0;   // solver_options::pic_fraction (the damping transfer's blend)
     int consistent_mass = 0;   // solver_options::consistent_mass_iterations (0: the lumped mass)
     bool volume_filter = false;// solver_options::volume_filter (needs consistent_mass >= 1)
+    double cfl = gimlet::solver_options<gimlet::space<2>>{}.cfl;  // solver_options::cfl, the Courant number
     double margin = 0;         // m of empty grid beyond each free end (0: 10 cells); room to fly off
     int threads = 0;
 };
@@ -73,6 +74,7 @@ solver_for<M, C> make_solver(const settings& s, const M& mat = gimlet::presets::
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
     opt.consistent_mass_iterations = s.consistent_mass;
+    opt.cfl = s.cfl;
     opt.volume_filter = s.volume_filter;
     return solver_for<M, C>(scene, opt);
 }

@@ -7,7 +7,7 @@
 //   impact_1d [--velocity 300] [--cell 0.1] [--end-us 3] [--scheme usf|musl|usl]
 //             [--contact single|distance] [--volumetric-average off|on] [--pic-fraction 0]
 //             [--viscosity-linear 0.12] [--viscosity-quadratic 2.4] [--consistent-mass 4]
-//             [--volume-filter off|on] [--threads 0]
+//             [--volume-filter off|on] [--cfl 0.4] [--threads 0]
 //             [--output results/impact_1d]
 //
 // --consistent-mass K takes K iterations towards the consistent mass matrix's grid accelerations
@@ -40,7 +40,7 @@ int main(int argc, char** argv) try {
     example::cli args(argc, argv,
                       "usage: impact_1d [--velocity V_m_s] [--cell H_mm] [--end-us T] [--scheme usf|musl|usl] "
                       "[--contact single|distance] [--volumetric-average off|on] [--pic-fraction A] [--viscosity-linear B1] "
-                      "[--viscosity-quadratic B2] [--consistent-mass K] [--volume-filter off|on] [--threads N] [--output DIR]");
+                      "[--viscosity-quadratic B2] [--consistent-mass K] [--volume-filter off|on] [--cfl C] [--threads N] [--output DIR]");
     impact_1d::settings s;
     s.velocity = args.real("velocity", 300.0, 0.0, 1000.0);
     s.cell = 1e-3 * args.real("cell", 0.1, 0.0, 1.0);
@@ -51,8 +51,9 @@ int main(int argc, char** argv) try {
     s.volumetric_average = args.choice("volumetric-average", "off", {"off", "on"}) == "on";
     s.pic_fraction = args.real("pic-fraction", 0.0, 0.0, 1.0, true);
     // USL refuses the consistent mass (solver_options::validate): its default there is the lumped mass.
-    const auto mv = example::read_mass_and_viscosity(args, scheme == "usl");
+    const auto mv = example::read_numerics(args, scheme == "usl");
     s.consistent_mass = mv.consistent_mass;
+    s.cfl = mv.cfl;
     s.volume_filter = args.choice("volume-filter", "off", {"off", "on"}) == "on";
     s.scheme = scheme == "musl" ? gimlet::update_scheme::musl
              : scheme == "usl"  ? gimlet::update_scheme::usl
@@ -70,7 +71,7 @@ int main(int argc, char** argv) try {
            "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
            "plateau_temperature_K,max_temperature_K,cell_mm,scheme,rh_temperature_K,plateau_eta,rh_eta,"
            "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta,pic_fraction,"
-           "viscosity_linear,viscosity_quadratic,consistent_mass,volume_filter,front_peak_eta_layers";
+           "viscosity_linear,viscosity_quadratic,consistent_mass,volume_filter,front_peak_eta_layers,cfl";
     for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
     csv << '\n';
     gimlet::io::exact_numbers(csv);
@@ -81,7 +82,7 @@ int main(int argc, char** argv) try {
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
         << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << mv.viscosity_linear << ','
-        << mv.viscosity_quadratic << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off") << ',' << r.front_peak_eta_layers;
+        << mv.viscosity_quadratic << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off") << ',' << r.front_peak_eta_layers << ',' << s.cfl;
     for (const auto n : r.health.count) csv << ',' << n;
     csv << '\n';
 

@@ -50,6 +50,8 @@ gimlet_cli_case(impact_1d pic_over      "--pic-fraction 1.5" "--pic-fraction = 1
 gimlet_cli_case(impact_1d viscosity_neg "--viscosity-linear -0.1" "--viscosity-linear = -0.1 is invalid; valid range: [0, 10]")
 gimlet_cli_case(impact_1d consistent_over "--consistent-mass 6" "--consistent-mass = 6 is invalid; valid: a whole number in [0, 5]")
 gimlet_cli_case(impact_1d consistent_usl  "--consistent-mass 1 --scheme usl" "consistent_mass_iterations with the USL scheme = 1 is invalid")
+gimlet_cli_case(impact_1d cfl_zero        "--cfl 0"           "--cfl = 0 is invalid; valid range: (0, 1]")
+gimlet_cli_case(impact_1d cfl_usl         "--cfl 0.8 --scheme usl" "cfl (Courant number) with the USL scheme = 0.8 is invalid")
 gimlet_cli_case(impact_1d filter_unknown "--volume-filter yes" "--volume-filter = yes is invalid; valid: off|on")
 gimlet_cli_case(impact_1d filter_lumped "--consistent-mass 0 --volume-filter on" "volume_filter (with consistent_mass_iterations = 0) = true is invalid")
 gimlet_cli_case(impact_1d unknown_flag    "--speed 300"       "unknown flag --speed")
@@ -66,6 +68,7 @@ gimlet_cli_case(contact_validation velocity_nan   "--velocity nan"   "--velocity
 gimlet_cli_case(contact_validation time_negative  "--time-us -5"     "--time-us = -5 is invalid; valid range: (0, 40]")
 gimlet_cli_case(contact_validation consistent_over "--consistent-mass 6" "--consistent-mass = 6 is invalid; valid: a whole number in [0, 5]")
 gimlet_cli_case(contact_validation viscosity_neg  "--viscosity-quadratic -1" "--viscosity-quadratic = -1 is invalid; valid range: [0, 10]")
+gimlet_cli_case(contact_validation cfl_over     "--cfl 1.5"        "--cfl = 1.5 is invalid; valid range: (0, 1]")
 gimlet_cli_case(contact_validation unknown_flag   "--end-us 5"       "unknown flag --end-us")
 gimlet_cli_case(contact_validation output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
 
@@ -97,5 +100,9 @@ gimlet_cli_case(cavity_collapse pic_negative "--pic-fraction -0.5" "--pic-fracti
 gimlet_cli_case(cavity_collapse consistent_negative "--consistent-mass -1" "--consistent-mass = -1 is invalid; valid: a whole number in [0, 5]")
 gimlet_cli_case(cavity_collapse filter_paper "--consistent-mass 1 --volume-filter on --temperature paper" "--volume-filter with --temperature paper = on is invalid; valid range: off")
 gimlet_cli_case(cavity_collapse viscosity_nan  "--viscosity-quadratic nan" "--viscosity-quadratic = nan is invalid; valid range: [0, 10]")
+gimlet_cli_case(cavity_collapse cfl_text       "--cfl 0.4x"       "--cfl = 0.4x is invalid; valid range: (0, 1]")
+# The consistent mass (4 iterations by default) raises the highest grid frequency: the solver refuses
+# a Courant number above 1/sqrt(5), by name.
+gimlet_cli_case(cavity_collapse cfl_consistent "--cfl 0.45"       "cfl (Courant number, with consistent_mass_iterations = 4) = 0.45 is invalid")
 gimlet_cli_case(cavity_collapse unknown_flag   "--time-us 5"       "unknown flag --time-us")
 gimlet_cli_case(cavity_collapse output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")
