@@ -88,7 +88,7 @@ def colour_limits(values, lo):
 
 def domains(m, ok, spacing):
     """The inverse of each kept particle's in-plane F (the identity where the map has no F, or
-    where F is singular or not finite: the particle is then painted as its initial square) and
+    where F is singular or not finite: the particle's domain is then its initial square) and
     the half-widths along x and y of its domain F [-h, h]^2 (h = 0.525 spacing), each at most
     MAX_REACH spacings (a particle stretched further is painted in part)."""
     half = 0.525 * spacing
@@ -112,18 +112,24 @@ MAX_REACH = 3  # spacings: the largest half-width of a particle's painted domain
 
 
 def raster(m, key, spacing):
-    """The particles of map m painted as an image: each particle its current domain, its initial
-    square (side 1.05 x its spacing, so that neighbours overlap) mapped by its deformation
-    gradient F (the map's F_* columns; without them, the square itself), in the colour of
-    m[key], on pixels of half the spacing (about 2000 a side at most), empty pixels NaN (left
-    blank). A pixel is painted where its centre lies in the domain. Where the lattice has
-    rotated, sheared or stretched, the domains still tile the material, so only a gap wider
-    than the pixels shows; axis-aligned squares would leave blank seams there. Where two domains
-    overlap, a pixel takes the colour of one of them (painted offset by offset, each offset in
-    the particles' order). A particle far from the rest (flung off) would shrink the material to
-    a few pixels: the image covers the 0.1-99.9 % range of the places on each axis, widened by a
-    twentieth of it and two spacings, and leaves out what lies beyond. Returns (image, extent)
-    for imshow(origin="lower"), or None if no particle has a finite place.
+    """The particles of map m painted as an image, on pixels of half the spacing (about 2000 a
+    side at most), empty pixels NaN (left blank). A pixel is material where its centre lies in a
+    particle's current domain (its initial square, side 1.05 x the spacing, mapped by its
+    deformation gradient F: the map's F_* columns) or within one spacing of a particle's centre;
+    it takes the colour of m[key] of the nearest such particle.
+
+    The domains tile a lattice that has rotated, sheared or stretched, where particles drawn
+    apart would leave blank seams between fixed squares. Where the flow has mixed the particles
+    (in a collapsed cavity's jet, stretches of 3 to 60 and slivers narrower than a pixel, whose F
+    disagree with their neighbours') the domains leave specks, and the spacing around each
+    centre fills them: there the particles are as dense as elsewhere, and no pixel is more than
+    about 1.4 spacings from a centre. So a gap shows where it is wider than about one spacing
+    (the material's edges are drawn up to half a spacing beyond the domains' edges).
+
+    A particle far from the rest (flung off) would shrink the material to a few pixels: the
+    image covers the 0.1-99.9 % range of the places on each axis, widened by a twentieth of it
+    and two spacings, and leaves out what lies beyond. Returns (image, extent) for
+    imshow(origin="lower"), or None if no particle has a finite place.
 
     An image instead of a scatter of one marker per particle: drawing 54,000 markers a panel is
     most of the figures' time, and markers under a pixel wide leave a moire of blank specks where
@@ -138,15 +144,16 @@ def raster(m, key, spacing):
         ok &= (c >= lo - margin) & (c <= hi + margin)
     half = 0.525 * spacing
     inv, ex, ey = domains(m, ok, spacing)
+    ex, ey = np.maximum(ex, spacing), np.maximum(ey, spacing)  # the spacing around each centre
     x, y, v = x[ok], y[ok], v[ok]
     x0, y0 = (x - ex).min(), (y - ey).min()
     width, height = (x + ex).max() - x0, (y + ey).max() - y0
     px = max(spacing / 2, width / 2000, height / 2000)
     nx = int(width / px) + 1
     ny = int(height / px) + 1
-    image = np.full((ny, nx), np.nan, dtype=np.float32)
-    # Every pixel of the domain's bounding box, in at most `span` steps per axis; painted where
-    # the pixel's centre, taken back through F, lies in the initial square.
+    image = np.full(ny * nx, np.nan, dtype=np.float32)
+    nearest = np.full(ny * nx, np.inf)  # squared distance to the particle that painted the pixel
+    # Every pixel of the painted area's bounding box, in at most `span` steps per axis.
     ix0 = ((x - ex - x0) / px).astype(int)
     iy0 = ((y - ey - y0) / px).astype(int)
     ix1 = np.minimum(((x + ex - x0) / px).astype(int), nx - 1)
@@ -158,10 +165,16 @@ def raster(m, key, spacing):
         for b in range(span + 1):
             iy = np.minimum(iy0 + b, iy1)
             dy = y0 + (iy + 0.5) * px - y
-            inside = (np.abs(inv[:, 0, 0] * dx + inv[:, 0, 1] * dy) <= half) & \
-                     (np.abs(inv[:, 1, 0] * dx + inv[:, 1, 1] * dy) <= half)
-            image[iy[inside], ix[inside]] = v[inside]
-    return image, (x0, x0 + nx * px, y0, y0 + ny * px)
+            d2 = dx * dx + dy * dy
+            paint = (d2 <= spacing * spacing) | \
+                    ((np.abs(inv[:, 0, 0] * dx + inv[:, 0, 1] * dy) <= half) &
+                     (np.abs(inv[:, 1, 0] * dx + inv[:, 1, 1] * dy) <= half))
+            k = iy[paint] * nx + ix[paint]
+            d2, colour = d2[paint], v[paint]
+            np.minimum.at(nearest, k, d2)
+            won = d2 <= nearest[k]
+            image[k[won]] = colour[won]
+    return image.reshape(ny, nx), (x0, x0 + nx * px, y0, y0 + ny * px)
 
 
 def plot_series(out):

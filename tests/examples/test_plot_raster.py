@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """examples/cavity_collapse/plot.py's raster(): each particle is painted as its current domain,
-its initial square mapped by its deformation gradient F, so that a lattice that has sheared,
-rotated or stretched renders with no blank pixel inside the material, and only a real gap, about
-a particle spacing wide or more, renders as a gap. numpy only (the drawing itself needs
-matplotlib, which is stubbed).
+its initial square mapped by its deformation gradient F, and the pixels within a spacing of its
+centre, so that a lattice that has sheared, rotated or stretched, or particles mixed by the flow,
+render with no blank pixel inside the material, and a real gap, wider than about a particle
+spacing, renders as a gap. numpy only (the drawing itself needs matplotlib, which is stubbed).
 
 Run: python3 tests/examples/test_plot_raster.py (exit status 0 when every case passes)."""
 import math
@@ -26,18 +26,22 @@ SPACING = 0.25  # mm: the flagship's particle spacing at 0.5 mm cells
 N = 40  # particles a side
 
 
-def lattice(F, gap=0.0, with_F=True, shift=(0.0, 0.0)):
-    """N x N particles at SPACING, the upper half moved up by `gap` (mm), then mapped by F (as a
-    homogeneous deformation moves them) and shifted; each particle carries F."""
+def lattice(F, gap=0.0, with_F=True, shift=(0.0, 0.0), jitter=0.0, own_F=None):
+    """N x N particles at SPACING, the upper half moved up by `gap` (mm), each moved by up to
+    `jitter` spacings on each axis (a fixed seed), then mapped by F (as a homogeneous deformation
+    moves them) and shifted; each particle carries F, or its own from own_F (an N^2 x 2 x 2
+    array)."""
     i, j = np.meshgrid(np.arange(N), np.arange(N), indexing="ij")
-    X = (i.ravel() + 0.5) * SPACING
-    Y = (j.ravel() + 0.5) * SPACING + np.where(j.ravel() >= N // 2, gap, 0.0)
+    rng = np.random.default_rng(7)
+    X = (i.ravel() + 0.5 + jitter * rng.uniform(-1, 1, N * N)) * SPACING
+    Y = (j.ravel() + 0.5 + jitter * rng.uniform(-1, 1, N * N)) * SPACING + np.where(j.ravel() >= N // 2, gap, 0.0)
     x = F[0, 0] * X + F[0, 1] * Y + shift[0]
     y = F[1, 0] * X + F[1, 1] * Y + shift[1]
     m = {"x_mm": x, "y_mm": y, "T": np.ones(x.size)}
     if with_F:
+        Fs = own_F if own_F is not None else np.broadcast_to(F, (x.size, 2, 2))
         for k, (r, c) in zip(plot.F_COLUMNS, ((0, 0), (0, 1), (1, 0), (1, 1))):
-            m[k] = np.full(x.size, F[r, c])
+            m[k] = np.array(Fs[:, r, c])
     return m
 
 
@@ -82,27 +86,37 @@ def check(ok, what):
 CASES = {
     "sheared (simple shear 1.0)": np.array([[1.0, 1.0], [0.0, 1.0]]),
     "rotated 30 degrees": rotation(30),
-    "rotated 30 degrees, stretched 1.8 along its x": rotation(30) @ np.diag([1.8, 1 / 1.8]),
-    "sheared 0.5 and stretched 1.6 along x": np.array([[1.6, 0.5], [0.0, 1 / 1.6]]),
+    "rotated 30 degrees, stretched 2.5 along its x": rotation(30) @ np.diag([2.5, 1 / 2.5]),
+    "sheared 0.5 and stretched 2.2 along x": np.array([[2.2, 0.5], [0.0, 1 / 2.2]]),
 }
 for name, F in CASES.items():
     blank, counted = blank_inside(F)
     check(counted > 1000 and blank == 0, f"{name}: {blank} blank of {counted} pixels inside the material")
 
-# The test can fail: without F, a stretched lattice's squares leave blank seams.
-blank, counted = blank_inside(CASES["rotated 30 degrees, stretched 1.8 along its x"], with_F=False)
-check(blank > 0, f"squares without F on the stretched lattice: {blank} blank of {counted} (seams expected)")
+# The test can fail: without F, the particles of a lattice stretched beyond about 1.4 are more
+# than a spacing apart, and blank seams show between them.
+blank, counted = blank_inside(CASES["rotated 30 degrees, stretched 2.5 along its x"], with_F=False)
+check(blank > 0, f"without F, the stretched lattice: {blank} blank of {counted} (seams expected)")
 
-# A 0.5 mm gap (two spacings) between the halves renders as a gap: every pixel whose centre lies
-# in it, a pixel in from its edges, is blank, along the whole width.
+# Particles mixed by the flow: each moved by up to 0.2 spacings, each with its own sliver of an F
+# (stretched 5 along a random direction) that does not tile with its neighbours'.
+angles = np.random.default_rng(11).uniform(0, np.pi, N * N)
+slivers = np.array([rotation(math.degrees(t)) @ np.diag([5.0, 0.2]) @ rotation(-math.degrees(t)) for t in angles])
+blank, counted = blank_inside(np.eye(2), jitter=0.2, own_F=slivers)
+check(counted > 1000 and blank == 0, f"mixed particles with slivers of F: {blank} blank of {counted}")
+
+# A 0.5 mm gap (two spacings) between the domains of the two halves renders as a gap: every pixel
+# more than a spacing from the particle centres on both sides (the middle spacing of the gap) is
+# blank, along the whole width, in at least one whole row.
 image, extent = plot.raster(lattice(np.eye(2), gap=0.5), "T", SPACING)
 cx, cy = pixel_centres(extent, image)
-below = (N // 2 - 0.5) * SPACING + 0.525 * SPACING  # the top of the lower half's domains
-above = (N // 2 + 0.5) * SPACING + 0.5 - 0.525 * SPACING  # the bottom of the upper half's
-pixel = SPACING / 2
-in_gap = (cy > below + pixel) & (cy < above - pixel) & (cx > 0) & (cx < N * SPACING)
+lower_row = (N // 2 - 0.5) * SPACING  # the centres of the lower half's top row
+upper_row = (N // 2 + 0.5) * SPACING + 0.5  # and of the upper half's bottom row
+in_gap = (cy > lower_row + SPACING) & (cy < upper_row - SPACING) & (cx > 0) & (cx < N * SPACING)
 painted = int(np.isfinite(image[in_gap]).sum())
-check(in_gap.sum() > 0 and painted == 0, f"0.5 mm gap: {painted} of {int(in_gap.sum())} pixels in it painted")
+rows = int(np.isnan(image[:, (cx[0] > 0) & (cx[0] < N * SPACING)]).all(axis=1).sum())
+check(in_gap.sum() > 0 and painted == 0 and rows >= 1,
+      f"0.5 mm gap: {painted} of {int(in_gap.sum())} pixels in its middle painted; {rows} blank rows across")
 
 # Without F columns (a map written before they existed) the particles are their squares.
 blank, counted = blank_inside(np.eye(2), with_F=False)
