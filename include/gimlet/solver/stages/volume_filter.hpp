@@ -47,6 +47,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -74,8 +75,9 @@ public:
     void apply(Core& c) {
         if constexpr (Core::has_reference_isentrope) {
             if (!c.options_.volume_filter) return;
-            // One block of node entries per body: particle i's body's copy of entry e.
-            const std::size_t nk = c.grid_.entries() * c.materials_.size();
+            // J is projected per body (key_base): with a single field, one block of node entries
+            // per body; with multi-field contact each body's fields have entries of their own.
+            const std::size_t nk = Core::multi_field ? c.grid_.entries() : c.grid_.entries() * c.materials_.size();
             first_.resize(nk);
             value_.resize(nk);
             product_.resize(nk);
@@ -110,6 +112,14 @@ private:
             }
     }
 
+    // Where particle `body`'s keys start: node entry e of a body is key key_base + e. With a
+    // single field every body reaches the same entries, so each has a block of its own; with
+    // multi-field contact a body's entries are its own already.
+    template <class Core>
+    [[nodiscard]] static std::size_t key_base(std::uint32_t body, std::size_t entries) noexcept {
+        return Core::multi_field ? 0 : std::size_t(body) * entries;
+    }
+
     // out_k = sum_p (S_ip / heavy_p) value(p) over the nodes above the cut-off, slab by slab.
     template <class Core, class Value>
     void scatter(Core& c, std::vector<real>& out, Value&& value) {
@@ -119,7 +129,7 @@ private:
         c.for_each_particle_by_slab([&](std::size_t i) {
             if (!(heavy_[i] > 0)) return;
             const real v = value(i) / heavy_[i];
-            const std::size_t base = std::size_t(body[i]) * ne;
+            const std::size_t base = key_base<Core>(body[i], ne);
             auto at = c.entries(i);
             c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
                 const std::size_t k = at(node);
@@ -144,7 +154,7 @@ private:
                     particle_[i] = own(i);
                     continue;
                 }
-                const std::size_t base = std::size_t(body[i]) * ne;
+                const std::size_t base = key_base<Core>(body[i], ne);
                 auto at = c.entries(i);
                 real sum = 0;
                 c.stencils_[i].for_each([&](std::size_t node, real w, const vector&) {
@@ -281,7 +291,7 @@ private:
                 e[static_cast<std::size_t>(k)] += particle_[static_cast<std::size_t>(k)];
     }
 
-    // Per body and node entry the lumped projection of J, the iterate, M times it (and the
+    // Per key (key_base) the lumped projection of J, the iterate, M times it (and the
     // releases), the masses as the renormalised weights see them; per particle the gathered
     // values, the weight on the nodes above the cut-off and the change of e_s.
     std::vector<real> first_, value_, product_, mass_, particle_, heavy_;
