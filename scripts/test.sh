@@ -3,6 +3,8 @@
 # Configure, build and test every preset in GIMLET_TEST_PRESETS (default: "release asan-ubsan fuzz").
 # Goes on after a failing preset so that one run reports them all; exits non-zero if any failed.
 #
+# It first runs the docs check (scripts/check_docs.py).
+#
 # The CI budget (docs/testing.md): at the end it prints the seconds of each phase (setup, then
 # configure, build and test of each preset) and the total, writes the same lines to
 # build/test-times.txt ("phase seconds", one per line, "total N" last), and lists the ten
@@ -43,6 +45,13 @@ timed() {
 if ! timed setup bash scripts/setup.sh --tests; then
     echo "test.sh: FAILED: scripts/setup.sh"
     exit 1
+fi
+
+# The docs check (links, the docs/ pages named, the wording rule); the guide's code blocks are
+# built and run by the release preset's tests.
+if ! timed docs python3 scripts/check_docs.py; then
+    failed=1
+    summary+=("docs: FAIL")
 fi
 
 presets="${GIMLET_TEST_PRESETS:-release asan-ubsan fuzz}"
