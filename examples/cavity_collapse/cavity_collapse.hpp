@@ -260,7 +260,10 @@ struct sample {
     double kinetic = 0, internal = 0;  // J per metre of depth
     double max_temperature = 0, hot_spot = 0;  // K
     double max_eta = 0;  // the largest particle compression 1 - det F
+    // The hot spot's disc: its centre, and its mass-weighted mean compression 1 - det F (-1
+    // where the search named no disc).
     S::vector hot_spot_centre = S::vector::Zero();
+    double hot_spot_eta = -1;
     // The material hotter than the bulk shock temperature T_EP(v) by each of hot_excess (K):
     // mass (kg per metre of depth) and area (m^2).
     std::array<double, hot_levels> hot_mass{}, hot_area{};
@@ -298,6 +301,7 @@ public:
         const auto hs = gimlet::diagnostics::hot_spot(sol, s_.hot_spot_radius, peak_so_far, hot_work_);
         r.hot_spot = hs.temperature;
         r.hot_spot_centre = hs.centre;
+        if (hs.temperature > peak_so_far) r.hot_spot_eta = disc_compression(sol, hs.centre, s_.hot_spot_radius);
         r.max_temperature = hs.max_temperature;
         r.max_eta = largest_compression(sol);
         const auto hot = gimlet::diagnostics::hot_material(sol, levels_);
@@ -321,6 +325,24 @@ public:
         return eta;
     }
 
+    // The mass-weighted mean 1 - det F of the particles whose centres lie within `radius` of
+    // `centre`: the disc the hot spot's temperature averages (diagnostics::hot_spot). Serial, so
+    // that its sum has the same bits on any thread count; it runs only on the steps that raise
+    // the hot spot's peak, and costs one pass over the particles without the material update.
+    template <class Solver>
+    static double disc_compression(const Solver& sol, const S::vector& centre, double radius) {
+        const auto& F = sol.particles().template column<gimlet::fields::deformation_gradient>();
+        const auto& x = sol.particles().template column<gimlet::fields::position>();
+        const auto& m = sol.particles().template column<gimlet::fields::mass>();
+        double mass = 0, eta = 0;
+        for (std::size_t i = 0; i < F.size(); ++i) {
+            if (!((x[i] - centre).squaredNorm() <= radius * radius)) continue;
+            mass += m[i];
+            eta += m[i] * (1.0 - double(F[i].determinant()));
+        }
+        return mass > 0 ? eta / mass : -1.0;
+    }
+
     template <class Solver>
     sample measure(const Solver& sol) {
         sample r;
@@ -334,6 +356,7 @@ public:
         const sample p = peaks(sol);
         r.hot_spot = p.hot_spot;
         r.hot_spot_centre = p.hot_spot_centre;
+        r.hot_spot_eta = p.hot_spot_eta;
         r.max_temperature = p.max_temperature;
         r.max_eta = p.max_eta;
         r.hot_mass = p.hot_mass;
@@ -405,6 +428,11 @@ struct summary {
     double max_hot_spot = 0, max_temperature = 0;  // K
     double max_eta = 0;  // the largest particle compression 1 - det F at any step (tracked every step)
     double t_hot_spot = -1;
+    // The hot spot's disc at its peak: its mass-weighted mean compression 1 - det F (-1: none).
+    // Beside it in summary.csv, the Rankine-Hugoniot eta of a planar symmetric landing at half
+    // the largest relative wall velocity (landing_eta): a reference, not a bound, since the jet
+    // lands on material already shocked.
+    double hot_spot_eta = -1;
     // K: at the last sample. The peak is a transient of the jet's landing (the compression
     // part of the heating reverses on release); what stays is plastic work and shock entropy.
     double final_hot_spot = 0;
@@ -440,6 +468,7 @@ struct summary {
         f("max_temperature", max_temperature);
         f("max_eta", max_eta);
         f("t_hot_spot", t_hot_spot);
+        f("hot_spot_eta", hot_spot_eta);
         f("final_hot_spot", final_hot_spot);
         f("settled_hot_spot", settled_hot_spot);
         for (std::size_t k = 0; k < hot_levels; ++k)
@@ -458,7 +487,8 @@ struct summary {
     // Every step: the peaks of the hot spot, the hottest particle, the compression and the hot
     // material (monitor::peaks).
     void track(const sample& r) {
-        if (r.hot_spot > max_hot_spot) max_hot_spot = r.hot_spot, t_hot_spot = r.time, settled_hot_spot = -1;
+        if (r.hot_spot > max_hot_spot)
+            max_hot_spot = r.hot_spot, t_hot_spot = r.time, hot_spot_eta = r.hot_spot_eta, settled_hot_spot = -1;
         max_temperature = std::max(max_temperature, r.max_temperature);
         max_eta = std::max(max_eta, r.max_eta);
         for (std::size_t k = 0; k < hot_levels; ++k) max_hot_mass[k] = std::max(max_hot_mass[k], r.hot_mass[k]);
@@ -484,7 +514,7 @@ struct summary {
                 max_upstream_speed = std::max(max_upstream_speed, r.cavity[b].upstream_speed);
             }
         if (r.hot_spot > max_hot_spot) {
-            max_hot_spot = r.hot_spot, t_hot_spot = r.time, settled_hot_spot = -1;
+            max_hot_spot = r.hot_spot, t_hot_spot = r.time, hot_spot_eta = r.hot_spot_eta, settled_hot_spot = -1;
         } else if (settled_hot_spot < 0 && r.time >= t_hot_spot + settle_time) {
             settled_hot_spot = r.hot_spot;
         }

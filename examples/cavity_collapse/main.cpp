@@ -169,6 +169,9 @@ output_state resume_from(const std::filesystem::path& checkpoint, const settings
     v.try_emplace("viscosity_quadratic", 1.2);
     v.try_emplace("volume_filter", 0.0);
     v.try_emplace("cfl", 0.4);
+    // Nor did it keep the hot spot's disc compression: a restart reports it only if the peak
+    // moves after it (-1 otherwise).
+    v.try_emplace("summary.hot_spot_eta", -1.0);
     for (const auto& [key, mine] : fixed_on_restart(s))
         if (value_of(v, key, checkpoint) != mine)
             throw std::invalid_argument("--restart " + checkpoint.string() + ": the checkpoint's " + key + " is " +
@@ -192,6 +195,14 @@ output_state resume_from(const std::filesystem::path& checkpoint, const settings
     return at;
 }
 
+// The Rankine-Hugoniot compression of a planar symmetric landing at half the largest relative
+// wall velocity (examples/common/hugoniot.hpp), the reference beside the hot spot's disc-mean
+// compression; -1 when no wall moved.
+inline double landing_eta(const summary& sum) {
+    const double v = 0.5 * sum.max_wall_relative_velocity;
+    return v > 0 ? example::rankine_hugoniot(gimlet::presets::make_hmx(), v).eta : -1.0;
+}
+
 // summary.csv: the run's settings, its peaks and times, the health events and how it ended.
 template <class Solver>
 void write_summary(const std::filesystem::path& file, const settings& s, const Solver& sol, const summary& sum,
@@ -203,7 +214,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "t_hotspot_us,final_hotspot_temperature_K,settled_hotspot_temperature_K,max_temperature_K,max_eta,lower_closure_us,lower_asymmetric,"
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
-          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl";
+          "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl,hotspot_eta,landing_eta";
     for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
     su << ",status\n";
@@ -218,7 +229,8 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
        << sum.aspect[1] << ',' << (s.volumetric_average ? "on" : "off") << ',' << s.pic_fraction << ','
        << (s.paper_temperature ? "paper" : "isentrope") << ',' << (s.self_contact ? "on" : "off") << ','
        << mon.bulk_shock_temperature() << ',' << s.consistent_mass << ',' << s.viscosity_linear << ','
-       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off") << ',' << s.cfl;
+       << s.viscosity_quadratic << ',' << (s.volume_filter ? "on" : "off") << ',' << s.cfl << ',' << sum.hot_spot_eta
+       << ',' << landing_eta(sum);
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << status << '\n';
@@ -254,7 +266,9 @@ void print_report(const settings& s, const Solver& sol, const summary& sum, cons
                 "%.1f K (hottest particle %.1f K)\n",
                 sum.max_wall_relative_velocity, sum.max_hot_spot, kelvin(sum.settled_hot_spot).c_str(),
                 sum.final_hot_spot, sum.max_temperature);
-    std::printf("  largest particle compression eta = 1 - det F: %.4f\n", sum.max_eta);
+    std::printf("  largest particle compression eta = 1 - det F: %.4f; the hot spot's disc at its peak: %.4f (a "
+                "planar landing at half the largest relative wall velocity: %.4f)\n",
+                sum.max_eta, sum.hot_spot_eta, landing_eta(sum));
     std::printf("  hot material, largest mass above T_EP = %.1f K plus", mon.bulk_shock_temperature());
     for (std::size_t k = 0; k < hot_levels; ++k)
         std::printf("%s %.0f K: %.3g g/m", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3);

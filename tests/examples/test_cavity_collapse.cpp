@@ -118,6 +118,15 @@ TEST_CASE("cavity_collapse: a coarse run writes complete, finite outputs", "[exa
     const double max_eta = std::stod(summary.rows[0][summary.column("max_eta")]);
     CHECK(max_eta > 0.05);
     CHECK(max_eta < 0.3);
+    // The hot spot's disc at its peak holds compressed material, no more compressed on average
+    // than its most compressed particle; the landing's reference is a planar shock's, positive
+    // and below the Mie-Grueneisen limit 1/s = 0.385.
+    const double disc_eta = std::stod(summary.rows[0][summary.column("hotspot_eta")]);
+    CHECK(disc_eta > 0);
+    CHECK(disc_eta <= max_eta);
+    const double landing_eta = std::stod(summary.rows[0][summary.column("landing_eta")]);
+    CHECK(landing_eta > 0);
+    CHECK(landing_eta < 0.385);
     CHECK(summary.rows[0][summary.column("volumetric_average")] == "off");
     CHECK(summary.rows[0][summary.column("temperature")] == "isentrope");
     CHECK(summary.rows[0][summary.column("pic_fraction")] == "0");
