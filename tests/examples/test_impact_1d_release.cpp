@@ -109,19 +109,28 @@ mpm_run mpm_release(double v, double cell) {
     return r;
 }
 
+// The largest |theta / theta_H - 1| of the 1-D Lagrangian reference (800 cells) over the window.
+double reference_drift(double v) {
+    lagrangian_1d::settings s;
+    s.velocity = v;
+    s.cells = 800;
+    return summarise(lagrangian_1d::run(s, window()), lagrangian_1d::hugoniot_theta(v)).largest_theta_change;
+}
+
 // The mean over the window of the median T - T0 within 10 % of the isentropic release's. The
-// entropy criterion (the median theta within 0.3 % of its plateau value over the window) is
-// printed, not asserted: it is not met (docs/equations.md).
+// drift of theta over the window is reported, not asserted, beside the Lagrangian reference's
+// over the same window, so that their ratio shows what the MPM step adds (docs/equations.md).
 void check_release(double v, double cell) {
     const double theta_h = lagrangian_1d::hugoniot_theta(v), isentropic = lagrangian_1d::isentropic_release_heating(v);
     const auto r = mpm_release(v, cell);
     const auto own = summarise(r.samples, r.plateau_theta), hugoniot = summarise(r.samples, theta_h);
+    const double reference = reference_drift(v);
     std::printf("release, MPM, %.0f m/s, %.2f mm cells: plateau theta / theta_H - 1 %+.3f %%; over 10-20 us the "
-                "largest |theta / plateau - 1| %.3f %% (0.3 %% asked: not asserted; |theta / theta_H - 1| %.3f %%), mean "
-                "median T - T0 %.2f K "
-                "(isentropic %.2f K)\n",
+                "largest |theta / plateau - 1| %.3f %% (|theta / theta_H - 1| %.3f %%), the Lagrangian reference's "
+                "%.3f %% (%.0f times less); mean median T - T0 %.2f K (isentropic %.2f K)\n",
                 v, cell * 1e3, 100 * (r.plateau_theta / theta_h - 1), 100 * own.largest_theta_change,
-                100 * hugoniot.largest_theta_change, own.mean_heating, isentropic);
+                100 * hugoniot.largest_theta_change, 100 * reference, own.largest_theta_change / reference,
+                own.mean_heating, isentropic);
     CHECK(std::abs(own.mean_heating / isentropic - 1) < 0.10);
 }
 
