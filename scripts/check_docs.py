@@ -4,7 +4,8 @@
 
   1. Every relative link in the repository's Markdown resolves: the file exists, and an anchor
      (`page.md#heading`) names a heading of that page, spelled as GitHub spells it.
-  2. Every `docs/<page>.md` that a source, script or page names exists.
+  2. Every `docs/<page>.md` that a source, script or page names exists, and a section it names
+     in quotes right after it (`docs/equations.md, "Self-contact"`) is still on that page.
   3. The wording rule: the docs, comments, scripts and outputs speak of the project alone, so no
      tracked text file has a line that matches WORDING, except the lines that
      docs/wording-allowlist.txt lists, each with its reason.
@@ -26,6 +27,10 @@ LINK = re.compile(r"(?<!!)\[(?:[^\]\[]|\[[^\]]*\])*\]\(([^)\s]+)(?:\s+\"[^\"]*\"
 IMAGE = re.compile(r"!\[[^\]]*\]\(([^)\s]+)\)")
 DOC_PATH = re.compile(r"\bdocs/[A-Za-z0-9_-]+\.md\b")
 FENCE = re.compile(r"^\s*(```|~~~)")
+# A page named with the sections cited after it: `docs/<page>.md, "A"` or `docs/<page>.md ("A" and
+# "B")`, in prose or in a comment whose lines the quote may span.
+CITED = re.compile(r"\bdocs/([A-Za-z0-9_-]+\.md)(?:,|:)?\s*\(?\s*((?:\"[^\"]+\"(?:\s*(?:,|and|or)\s*)?)+)")
+COMMENT_LEAD = re.compile(r"^\s*(?:///?|#+|\*|--)?\s?")
 
 
 def tracked_files(root):
@@ -115,8 +120,14 @@ def check_links(root, files):
     return findings
 
 
+def plain(text):
+    """Text as it reads: Markdown's emphasis and code marks dropped, white space collapsed."""
+    return " ".join(text.replace("**", "").replace("`", "").split())
+
+
 def check_doc_paths(root, files):
     findings = []
+    pages = {}
     for rel in files:
         text = read_text(root / rel)
         if text is None:
@@ -125,6 +136,22 @@ def check_doc_paths(root, files):
             for m in DOC_PATH.finditer(line):
                 if not (root / m.group(0)).exists():
                     findings.append(f"{rel}:{n}: names {m.group(0)}, which does not exist")
+        # The quoted sections: the text joined across lines without their comment marks.
+        lines = text.splitlines()
+        joined, starts = "", []
+        for line in lines:
+            starts.append(len(joined))
+            joined += COMMENT_LEAD.sub("", line, count=1) + " "
+        for m in CITED.finditer(joined):
+            page = root / "docs" / m.group(1)
+            if not page.exists():
+                continue
+            if page not in pages:
+                pages[page] = plain(read_text(page) or "")
+            n = sum(1 for s in starts if s <= m.start())
+            for title in re.findall(r'"([^"]+)"', m.group(2)):
+                if plain(title).lower() not in pages[page].lower():
+                    findings.append(f'{rel}:{n}: docs/{m.group(1)} has no section "{plain(title)}"')
     return findings
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The serial share of a multi-threaded run, from where its threads' samples fall in time
-(docs/performance.md, "What limits scaling to 16 threads, from the one-thread profile"): what a
+(docs/performance.md, "What limits scaling to 16 threads"): what a
 machine with few cores says of what limits scaling to many.
 
     serial_share.py [--frequency HZ] [--window MS] [--after NAME] [--top N] -- COMMAND [ARG ...]
