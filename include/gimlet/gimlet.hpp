@@ -60,3 +60,22 @@
 #include "gimlet/viscosity/concepts.hpp"
 #include "gimlet/viscosity/bulk.hpp"
 #include "gimlet/viscosity/none.hpp"
+/// \mainpage gimlet API reference
+///
+/// The reference of every public class, function, concept and policy of gimlet, generated from
+/// the headers' `///` comments; the guides are the Markdown pages of the repository's docs/
+/// folder (concepts.md for writing a policy, physics.md and equations.md for the formulas).
+///
+/// Where to start:
+/// - gimlet::solver, built from a gimlet::scene::scene (a gimlet::grid_spec and bodies that
+///   fill gimlet::scene::box, gimlet::scene::ball or gimlet::scene::difference regions) and
+///   gimlet::solver_options;
+/// - gimlet::material, a bundle of four policies: gimlet::strength::Strength,
+///   gimlet::eos::Eos, gimlet::thermal::Thermal and gimlet::viscosity::Viscosity;
+///   gimlet::presets::make_hmx gives the reference HMX;
+/// - the shape functions (gimlet::shape::Shape) and contact laws (gimlet::contact::Contact);
+/// - gimlet::diagnostics (observers for gimlet::solver::run_until) and gimlet::io (.vtp and
+///   .pvd snapshots, CSV tables, checkpoints).
+///
+/// `#include "gimlet/gimlet.hpp"` includes everything. Errors are gimlet::invalid_parameter
+/// (bad input, refused at construction) and gimlet::numerical_error (trouble during a run).

@@ -22,7 +22,9 @@ namespace gimlet::contact {
 /// which contact::distance answers.
 class bardenhagen {
 public:
+    /// One velocity field per body (contact::Contact).
     static constexpr bool multi_field = true;
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
 
     /// \param friction Coulomb coefficient mu >= 0 (0: frictionless; infinity: no slip).
@@ -36,6 +38,7 @@ public:
         return true;
     }
 
+    /// mu, the Coulomb coefficient (contact::Law).
     [[nodiscard]] double friction() const noexcept { return mu_; }
 
 private:

@@ -9,6 +9,7 @@
 #include <concepts>
 #include <utility>
 
+/// Contact policies: how bodies that share grid nodes interact (contact::Contact).
 namespace gimlet::contact {
 
 /// A multi-field contact law: the physics of contact and nothing else. The framework

@@ -25,7 +25,9 @@ namespace gimlet::contact {
 /// meet, each pair is measured along its own normal.
 class distance {
 public:
+    /// One velocity field per body (contact::Contact).
     static constexpr bool multi_field = true;
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
 
     /// \param friction Coulomb coefficient mu >= 0; \param gap_fraction the switching distance
@@ -44,7 +46,9 @@ public:
         return pair.gap <= real(gap_) * pair.cell * (real(1) + real(1e-9));
     }
 
+    /// mu, the Coulomb coefficient (contact::Law).
     [[nodiscard]] double friction() const noexcept { return mu_; }
+    /// The switching distance, in cells.
     [[nodiscard]] double switching_distance() const noexcept { return gap_; }
 
 private:

@@ -30,7 +30,9 @@ template <class Vector>
 /// a low-level policy (contact::NodeResolver), which corrects `momentum` itself.
 template <Space S>
 struct node_view {
+    /// The scalar type of S.
     using real = typename S::real;
+    /// A velocity or momentum: S::vector.
     using vector = typename S::vector;
 
     std::size_t count = 0;            ///< fields present (>= 2)
@@ -48,12 +50,14 @@ struct node_view {
     real dt = 0;                      ///< time step
     std::size_t node = 0;             ///< the node's index in the grid
     vector position = vector::Zero(); ///< the node's position (m)
+    ///@{
     /// count x count, in/out, for a contact law with its own impulse (multi_field::correct):
     /// where the step's deciding pass engaged pair (a, b), a < b, the fractions of its normal
     /// approach and of its slip that the law's impulse removed, [a * count + b]. The step's later
     /// passes remove the same fractions of theirs: the law is not asked again. Null: not kept.
     real* normal_fraction = nullptr;
     real* slip_fraction = nullptr;
+    ///@}
 
     /// Most fields at one node: their pairs must fit the 64-bit masks below. The solver stops a
     /// run with a numerical_error naming the node if more meet there.
@@ -91,7 +95,9 @@ struct node_view {
     [[nodiscard]] real gap(std::size_t a, std::size_t b) const noexcept {
         return -(reach[a * count + b] + reach[b * count + a]);
     }
+    /// True if pair (a, b) is in kept_pairs.
     [[nodiscard]] bool kept(std::size_t a, std::size_t b) const noexcept { return kept_pairs & pair_bit(a, b); }
+    /// True if pair (a, b) is in open_pairs.
     [[nodiscard]] bool open(std::size_t a, std::size_t b) const noexcept { return open_pairs & pair_bit(a, b); }
 };
 
@@ -100,15 +106,25 @@ struct node_view {
 /// and after the corrections of the node's earlier pairs).
 template <Space S>
 struct pair_view {
+    /// The scalar type of S.
     using real = typename S::real;
+    /// A velocity or normal: S::vector.
     using vector = typename S::vector;
 
     std::size_t node = 0;              ///< the node's index in the grid
     vector position = vector::Zero();  ///< the node's position (m)
+    ///@{
     std::uint32_t field_a = 0, field_b = 0;  ///< the two fields' ids (field_a < field_b)
+    ///@}
+    ///@{
     std::uint32_t body_a = 0, body_b = 0;    ///< the bodies they belong to (equal in self-contact)
+    ///@}
+    ///@{
     real mass_a = 0, mass_b = 0;       ///< their nodal masses m_i^a, m_i^b
+    ///@}
+    ///@{
     vector velocity_a = vector::Zero(), velocity_b = vector::Zero();  ///< their nodal velocities
+    ///@}
     vector normal = vector::Zero();    ///< unit normal from a towards b (contact::pair_normal)
     /// Distance between the facing particle centres of a and b along `normal` (the reference
     /// paper's R_i^pq, its section 2.2): h/2 when 2 x 2 particles per cell touch.

@@ -12,7 +12,9 @@ namespace gimlet::contact {
 /// two cells apart) and, once their particle domains meet, stick and cannot separate.
 /// The grid holds a single field; no contact step runs.
 struct single_field {
+    /// One shared velocity field (contact::Contact).
     static constexpr bool multi_field = false;
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
 };
 

@@ -15,6 +15,9 @@ namespace gimlet {
 /// valid range.
 class invalid_parameter : public std::invalid_argument {
 public:
+    /// \param name  the parameter as the user spells it, with its unit, e.g. "bulk modulus K (Pa)".
+    /// \param value the value given, as text.
+    /// \param valid the valid range, as text, e.g. "> 0".
     invalid_parameter(const std::string& name, const std::string& value, const std::string& valid)
         : std::invalid_argument(name + " = " + value + " is invalid; valid range: " + valid),
           name_(name) {}

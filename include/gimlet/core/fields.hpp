@@ -48,6 +48,7 @@ consteval bool check_field() {
 /// An ordered set of field tags.
 template <Field... Tags>
 struct field_list {
+    /// Number of tags in the list.
     static constexpr std::size_t size = sizeof...(Tags);
 };
 
@@ -123,82 +124,113 @@ namespace fields {
 
 /// Position x_p (m).
 struct position {
+    /// Per particle: an S::vector.
     template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "position";
 };
 /// Velocity v_p (m/s).
 struct velocity {
+    /// Per particle: an S::vector.
     template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "velocity";
 };
 /// Mass m_p (kg; per unit thickness in 2-D).
 struct mass {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "mass";
 };
 /// Reference volume V_p^0 (m^3; m^2 per unit thickness in 2-D). Current volume is det(F) V^0.
 struct volume0 {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "volume0";
 };
 /// Deformation gradient F_p (in-plane; F_zz = 1 in plane strain).
 struct deformation_gradient {
+    /// Per particle: an S::matrix (Dim x Dim).
     template <class S> using type = typename S::matrix;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "deformation_gradient";
+    /// A new particle starts undeformed: F = I.
     template <class S> static type<S> initial() { return type<S>::Identity(); }
 };
 /// Cauchy stress sigma_p (Pa), in-plane components.
 struct stress {
+    /// Per particle: an S::matrix (Dim x Dim).
     template <class S> using type = typename S::matrix;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "stress";
 };
 /// Out-of-plane Cauchy stress sigma_zz (Pa); only 2-D (plane strain) scenes carry it.
 struct stress_zz {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "stress_zz";
 };
 /// Specific internal energy e (J/kg), integrated from the stress power sigma:D / rho.
 struct specific_internal_energy {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "specific_internal_energy";
 };
 /// Which body the particle belongs to (index into the scene's bodies).
 struct body {
+    /// Per particle: a std::uint32_t.
     template <class S> using type = std::uint32_t;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "body";
 };
 /// Initial half-width of the particle's domain per axis (m); GIMP shape functions need it.
 struct domain_half_width {
+    /// Per particle: an S::vector.
     template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "domain_half_width";
 };
 /// External acceleration b_p (m/s^2) applied to this particle: the solver adds S_ip m_p b_p to
 /// the nodal force when the store has this field (e.g. a manufactured-solution body force). Ask
 /// for it through the solver's `ExtraFields`; scenes without it pay nothing.
 struct external_acceleration {
+    /// Per particle: an S::vector.
     template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "external_acceleration";
 };
 /// Equivalent plastic strain eps_p (accumulated, dimensionless); plasticity policies keep it.
 struct plastic_strain {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "plastic_strain";
 };
 /// Plastic work per unit mass w_p = int Y d eps_p / rho (J/kg); plasticity policies keep it,
 /// the reference paper's Mie-Grueneisen variant reads it.
 struct plastic_work {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "plastic_work";
 };
 /// Volumetric compression rate -tr D of the particle's last update where it compressed, else 0
 /// (1/s); viscosity::bulk keeps it for the stable time step.
 struct compression_rate {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "compression_rate";
 };
 /// Temperature T (K); only scenes with a thermal policy carry it.
 struct temperature {
+    /// Per particle: an S::real.
     template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "temperature";
 };
 

@@ -45,9 +45,13 @@ enum class wall_pass {
 /// Geometry of the domain: [lower, upper] per axis, cell size h, boundary per axis.
 template <Space S>
 struct grid_spec {
+    /// The scalar type of S.
     using real = typename S::real;
+    /// Lower corner of the domain (m).
     typename S::vector lower = S::vector::Zero();
+    /// Upper corner of the domain (m); each extent upper - lower must be a whole number of cells.
     typename S::vector upper = S::vector::Ones();
+    /// Cell size h (m), > 0, the same on every axis.
     real cell = real(0.1);
     /// Boundary per axis. Defaults to `free` on every axis: a body that reaches the end of the
     /// grid stops the run with an error naming the particle, rather than wrapping round to the
@@ -77,8 +81,11 @@ inline const char* axis_name(int d) { return d == 0 ? "x" : d == 1 ? "y" : "z"; 
 template <Space S>
 class grid {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// A position or velocity: S::vector.
     using vector = typename S::vector;
+    /// Number of axes, 2 or 3.
     static constexpr int dim = S::dim;
 
     /// \param spec  the domain; validated (cell > 0, extent a whole number of cells, ...).
@@ -139,17 +146,26 @@ public:
         velocity_old.assign(total, vector::Zero());
         stopped_.assign(total, std::uint8_t(0));
     }
+    /// Number of velocity fields per node (see set_field_count()).
     [[nodiscard]] std::size_t field_count() const noexcept { return fields_; }
     /// Entries of every nodal array: field_count() * size().
     [[nodiscard]] std::size_t entries() const noexcept { return fields_ * size_; }
 
+    /// The domain the grid was built from.
     [[nodiscard]] const grid_spec<S>& spec() const noexcept { return spec_; }
+    /// Cell size h (m).
     [[nodiscard]] real cell() const noexcept { return spec_.cell; }
+    /// 1 / h (1/m).
     [[nodiscard]] real inv_cell() const noexcept { return inv_cell_; }
+    /// Number of cells along axis d.
     [[nodiscard]] int cells(int d) const noexcept { return cells_[d]; }
+    /// Number of stored nodes along axis d: cells on a periodic axis, cells + 1 + 2 ghost otherwise.
     [[nodiscard]] int nodes(int d) const noexcept { return nodes_[d]; }
+    /// True if axis d is periodic.
     [[nodiscard]] bool periodic(int d) const noexcept { return periodic_[d]; }
+    /// Ghost nodes beyond each non-periodic boundary (the shape stencil width).
     [[nodiscard]] int ghost() const noexcept { return ghost_; }
+    /// Number of stored nodes (the product of nodes(d) over the axes); one field's share of a nodal array.
     [[nodiscard]] std::size_t size() const noexcept { return size_; }
 
     /// Storage offset along axis d of node k (multiplied by the axis stride).

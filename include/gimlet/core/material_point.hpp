@@ -24,6 +24,7 @@ struct point_state {
 /// One constitutive update over a time step (docs/physics.md section 1, step 5).
 template <class Real>
 struct point_step : point_state<Real> {
+    /// A 3x3 tensor of Real (plane strain carries the out-of-plane components).
     using tensor3 = Eigen::Matrix<Real, 3, 3>;
     Real dt = 0;               ///< time step
     Real J_old = 1;            ///< det F at the start of the step

@@ -10,6 +10,8 @@
 #include <Eigen/LU>  // determinant
 #include <concepts>
 
+/// gimlet: a header-only GIMP/MPM library. Start from gimlet::solver, scene::scene and
+/// gimlet::material; gimlet/gimlet.hpp includes everything.
 namespace gimlet {
 
 /// Dimension and scalar type of a simulation.
@@ -18,10 +20,15 @@ namespace gimlet {
 template <int Dim, std::floating_point Real = double>
 struct space {
     static_assert(Dim == 2 || Dim == 3, "gimlet supports Dim = 2 (plane strain) and Dim = 3");
+    /// Number of axes, 2 or 3.
     static constexpr int dim = Dim;
+    /// The scalar type.
     using real = Real;
+    /// A position, velocity or force: Dim components.
     using vector = Eigen::Matrix<Real, Dim, 1>;
+    /// A node index per axis.
     using ivector = Eigen::Matrix<int, Dim, 1>;
+    /// A Dim x Dim tensor (deformation gradient, in-plane stress).
     using matrix = Eigen::Matrix<Real, Dim, Dim>;
     /// Constitutive laws always work on 3x3 tensors; in plane strain the out-of-plane
     /// components are carried explicitly (docs/physics.md section 4: s_zz != 0).
@@ -55,7 +62,7 @@ template <class Real, int Dim>
 /// and NaNs come out the same, under the default floating-point model: not under -ffast-math).
 /// Written out because a unit that holds several solvers leaves that expression to an
 /// out-of-line Eigen loop, a call per particle with the tensors in memory (docs/performance.md,
-/// "Policies inlined into the material update").
+/// "How the step is organised for speed").
 template <class Real>
 [[nodiscard]] GIMLET_INLINE Eigen::Matrix<Real, 3, 3> minus_identity(const Eigen::Matrix<Real, 3, 3>& a, Real c) {
     Eigen::Matrix<Real, 3, 3> r;

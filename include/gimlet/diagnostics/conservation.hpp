@@ -8,6 +8,8 @@
 
 #include <cstddef>
 
+/// Observers and measurements of a running solver: conserved quantities, hot spots, void
+/// surfaces, schedules for solver::run_until, a progress line.
 namespace gimlet::diagnostics {
 
 /// Total mass sum m_p (kg; per unit thickness in 2-D).
@@ -52,11 +54,17 @@ template <class Solver>
 /// One sample of the conserved quantities.
 template <int Dim>
 struct conservation_sample {
+    /// Simulated time (s).
     double time = 0;
+    /// Total mass (kg; per unit thickness in 2-D): total_mass().
     double mass = 0;
+    /// Linear momentum (kg m/s; per unit thickness in 2-D): linear_momentum().
     Eigen::Matrix<double, Dim, 1> momentum = Eigen::Matrix<double, Dim, 1>::Zero();
+    /// Kinetic energy (J; per unit thickness in 2-D): kinetic_energy().
     double kinetic = 0;
+    /// Internal energy (J; per unit thickness in 2-D): internal_energy().
     double internal = 0;
+    /// kinetic + internal (J; per unit thickness in 2-D).
     [[nodiscard]] double total_energy() const { return kinetic + internal; }
 };
 

@@ -24,6 +24,8 @@
 
 namespace gimlet::diagnostics {
 
+/// What hot_spot finds: the hottest disc's mean temperature, centre and particle count, and the
+/// hottest particle's temperature. \tparam Vector the solver's vector type.
 template <class Vector>
 struct hot_spot_result {
     /// K: mass-weighted mean temperature in the hottest disc (-infinity: none)
@@ -42,12 +44,16 @@ struct hot_spot_result {
 /// workspace serves one call at a time: calls that run concurrently need one each.
 template <class Vector>
 struct hot_spot_workspace {
+    ///@{
+    /// Scratch of one call (per-block bounds, bins, the particles copied in bin order), resized as
+    /// needed; what it holds between calls does not affect the next result.
     std::vector<Vector> block_lo, block_hi, block_hot_lo, block_hot_hi, sorted_x;
     std::vector<std::array<std::size_t, std::size_t(Vector::RowsAtCompileTime)>> cell;
     std::vector<std::size_t> bin, cursor, start, block_hottest, sorted_index;
     std::vector<std::uint8_t> block_hot;
     std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_rim;
     std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
+    ///@}
 };
 
 namespace detail {
@@ -99,7 +105,7 @@ public:
         // The passes run in one parallel region, with barriers between them: where idle threads
         // sleep (OMP_WAIT_POLICY=passive) a region costs about nine barriers, and a region per
         // pass (five a call) would cost as much as the second thread saves (docs/performance.md,
-        // "The hot spot's passes in one region"). Each pass's shares are
+        // "How the step is organised for speed"). Each pass's shares are
         // set up where its size is known: the first in the constructor, the others by one
         // thread between the passes. The branches below are the same for every thread: `refine_`
         // and `go_` are written in a `single`, before the barrier that ends it.
@@ -511,7 +517,7 @@ private:
     // f(k) for each of the 3^dim bins around particle i's that exist, the first axis fastest
     // (the order the discs' sums take). Nested loops over each axis's range: enumerating the
     // 3^dim offsets and testing each would cost a fifth of the search's instructions
-    // (docs/performance.md, "The hot spot's bins").
+    // (docs/performance.md, "How the step is organised for speed").
     template <class F>
     void around(std::size_t i, F&& f) const {
         const auto& b = w_.cell[i];
@@ -638,8 +644,14 @@ template <class Solver>
 /// how pore-collapse studies compare hot spots across resolutions: the amount of material above
 /// a temperature, not the hottest particle (docs/reproduction.md).
 struct hot_material_result {
+    ///@{
+    /// Per entry of `temperatures`, in its order: the mass (kg) and the current volume (m^3) above it.
     std::vector<double> mass, volume;
+    ///@}
 };
+/// Computes hot_material_result for each of `temperatures` (K). From 4096 particles the hot
+/// particles are found on the solver's threads; the sums run in particle order, so the result
+/// does not depend on the thread count. Needs the temperature field (a thermal policy that is on).
 template <class Solver>
 [[nodiscard]] hot_material_result hot_material(const Solver& s, const std::vector<double>& temperatures) {
     static_assert(Solver::store_type::template has<fields::temperature>,

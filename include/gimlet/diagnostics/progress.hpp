@@ -14,8 +14,13 @@
 
 namespace gimlet::diagnostics {
 
+/// An observer for solver::run_until that prints a line such as "step 1200, t = 3.000 of
+/// 10.000 us, 12 s elapsed, about 28 s left" at most every `interval_s` of wall time, and a
+/// last line "done in ... s" when the run reaches `t_end`. The time left is extrapolated from
+/// the simulated time covered since its first call.
 class progress {
 public:
+    /// The wall clock it measures with.
     using clock = std::chrono::steady_clock;
 
     /// Report to `out` at most every `interval_s` seconds of wall time, for a run that ends at
@@ -25,6 +30,8 @@ public:
         require_positive("progress interval (s)", interval_s);
     }
 
+    /// The first call starts the clock; later calls print a line if `interval_s` has passed or
+    /// the run has reached `t_end`.
     template <class Solver>
     void maybe_call(const Solver& s) {
         const auto now = clock::now();

@@ -16,9 +16,13 @@ namespace gimlet::diagnostics {
 template <class F>
 class every_time {
 public:
+    /// \param interval the interval (s) of simulated time, finite and > 0; \param f the callable.
+    /// \throws gimlet::invalid_parameter for an interval that is not finite and > 0.
     every_time(double interval, F f) : interval_(interval), f_(std::move(f)) {
         require_positive("observer interval (s)", interval);
     }
+    /// Call f(s) if s.time() has reached the next multiple of the interval (solver::run_until
+    /// calls it at its start and after every step).
     template <class Solver>
     void maybe_call(const Solver& s) {
         if (double(s.time()) + 1e-12 * interval_ < next_) return;
@@ -61,7 +65,10 @@ private:
 template <class F>
 class every_steps {
 public:
+    /// \param n the step interval, >= 1; \param f the callable.
+    /// \throws gimlet::invalid_parameter if n is 0.
     every_steps(std::uint64_t n, F f) : when_(n, "observer step interval"), f_(std::move(f)) {}
+    /// Call f(s) if s.steps() is a multiple of n and f has not yet been called at this step.
     template <class Solver>
     void maybe_call(const Solver& s) {
         if (when_.due(s.steps())) f_(s);
@@ -80,7 +87,10 @@ private:
 template <class F>
 class between_steps {
 public:
+    /// \param n the step interval, >= 1; \param f the callable, given the solver writable.
+    /// \throws gimlet::invalid_parameter if n is 0.
     between_steps(std::uint64_t n, F f) : when_(n, "hook step interval"), f_(std::move(f)) {}
+    /// Call f(s) if s.steps() is a multiple of n and f has not yet been called at this step.
     template <class Solver>
     void maybe_call(Solver& s) {
         if (when_.due(s.steps())) f_(s);

@@ -248,8 +248,11 @@ template <class Solver>
 /// A line for void_chords: the void of `body` crossed by the line through `point` along `axis`.
 template <class Vector>
 struct chord_line {
+    /// The body whose void is cut.
     std::uint32_t body;
+    /// The axis of the line: 0 (x), 1 (y) or 2 (z).
     int axis;
+    /// A point of the line (m).
     Vector point;
 };
 

@@ -7,6 +7,7 @@
 
 #include <concepts>
 
+/// Equations of state: the pressure of a material point (eos::Eos).
 namespace gimlet::eos {
 
 /// An EOS policy gives the pressure of a material point and its tangent bulk modulus.
@@ -40,6 +41,7 @@ namespace guard {
 inline constexpr unsigned compression_capped = 1;  ///< EOS modulus taken at a capped compression
 inline constexpr unsigned negative_modulus = 2;    ///< EOS tangent modulus < 0, taken as 0
 inline constexpr unsigned no_wave_speed = 4;       ///< (K + 4G/3)/rho <= 0: wave speed taken as 0
+/// Number of guard kinds, the bits above (health_events keeps a count of each).
 inline constexpr unsigned kinds = 3;
 }  // namespace guard
 

@@ -14,6 +14,7 @@ namespace gimlet::eos {
 /// modulus is \f$ -V\,dP/dV = K J \f$.
 class linear {
 public:
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
     /// Its templates compute lane by lane for a lane type (gimlet::lane_safe).
     static constexpr bool lane_safe = true;
@@ -23,15 +24,18 @@ public:
         require_positive("bulk modulus K (Pa)", bulk_modulus);
     }
 
+    /// P = K (1 - J) (Pa).
     template <class Real, class P>
     [[nodiscard]] Real pressure(const point_step<Real>& st, const P& /*p*/) const {
         return Real(k_) * (Real(1) - st.J);
     }
+    /// The tangent bulk modulus K J (Pa).
     template <class Real, class P>
     [[nodiscard]] Real bulk_modulus(const point_state<Real>& state, const P& /*p*/) const {
         return Real(k_) * state.J;
     }
 
+    /// K (Pa).
     [[nodiscard]] double bulk_modulus() const noexcept { return k_; }
 
 private:

@@ -25,6 +25,7 @@ enum class energy_reference {
     plastic_work,
 };
 
+/// Mie-Grueneisen equation of state on a linear U_s-u_p Hugoniot:
 /// \f[ P = P_H(V) + \frac{\Gamma}{V}\,(e - e_H(V)), \qquad e_H = \tfrac12 P_H (V_0 - V) \f]
 /// with, for \f$ \eta = 1 - V/V_0 \ge 0 \f$, \f$ P_H = \rho_0 c_0^2 \eta / (1 - s\eta)^2 \f$
 /// (the Hugoniot of U_s = c_0 + s U_p), and in tension \f$ P_H = \rho_0 c_0^2 (V_0/V - 1) \f$
@@ -39,6 +40,7 @@ enum class energy_reference {
 template <energy_reference Ref = energy_reference::internal_energy>
 class mie_gruneisen {
 public:
+    /// No field for the standard form; fields::plastic_work for the reference paper's variant.
     using required_fields = std::conditional_t<Ref == energy_reference::plastic_work,
                                                field_list<fields::plastic_work>, field_list<>>;
     /// The standard form takes the thermal energy e_th = e - s:s/(4 G rho) (eos::Eos).
@@ -102,6 +104,7 @@ public:
         }
     }
 
+    ///@{
     /// Isentropic tangent bulk modulus K_s = -V (dP/dV)_s = -V (dP/dV)_e + Gamma P, from
     /// de = -P dV along an isentrope, for the time step's wave speed (never negative). It reads
     /// the whole e (a point_state carries no shear energy; at most Y0^2 / (6 G rho), 185 J/kg
@@ -128,10 +131,15 @@ public:
         if (!(k >= 0.0)) guards |= guard::negative_modulus;
         return Real(std::max(k, 0.0));
     }
+    ///@}
 
+    /// rho_0 (kg/m^3).
     [[nodiscard]] double density0() const noexcept { return rho0_; }
+    /// c_0 (m/s), the Hugoniot's bulk sound speed.
     [[nodiscard]] double sound_speed() const noexcept { return c0_; }
+    /// s, the slope of the Hugoniot's U_s-u_p line.
     [[nodiscard]] double slope() const noexcept { return s_; }
+    /// Gamma, the Grueneisen parameter.
     [[nodiscard]] double gruneisen() const noexcept { return gamma_; }
 
 private:

@@ -67,10 +67,12 @@ namespace gimlet::io {
 /// input catches it too.
 class checkpoint_error : public invalid_parameter {
 public:
+    /// \param file the checkpoint's path; \param problem what is wrong with it, in words.
     checkpoint_error(const std::filesystem::path& file, const std::string& problem)
         : invalid_parameter("checkpoint file", detail::quoted(file.string()), problem),
           message_(std::string("checkpoint file ") + detail::quoted(file.string()) + " refused: " + problem),
           problem_(problem) {}
+    /// The whole message: the file (quoted), "refused:", and the problem.
     [[nodiscard]] const char* what() const noexcept override { return message_.c_str(); }
     /// The problem alone, without the file name.
     [[nodiscard]] const std::string& problem() const noexcept { return problem_; }
@@ -86,19 +88,29 @@ using checkpoint_values = std::map<std::string, double>;
 
 /// One particle field as a checkpoint records it.
 struct checkpoint_field {
+    /// The field's name (its tag's `name`).
     std::string name;
+    /// Bytes one particle's value takes (e.g. 24 for a 3-D vector of doubles).
     std::size_t bytes_per_particle = 0;
+    /// Equal names and sizes.
     friend bool operator==(const checkpoint_field&, const checkpoint_field&) = default;
 };
 
 /// What a checkpoint file holds, besides the particle columns.
 struct checkpoint_info {
+    /// 2 or 3.
     int dimension = 0;
+    /// Bytes per real: 4 (float) or 8 (double).
     std::size_t real_bytes = 0;
+    /// Number of particles n.
     std::uint64_t particles = 0;
+    /// Simulated time at the save (s).
     double time = 0;
+    /// Steps taken at the save.
     std::uint64_t steps = 0;
+    /// The particle columns, in the file's order.
     std::vector<checkpoint_field> fields;
+    /// The caller's key-values saved with it.
     checkpoint_values values;
 };
 

@@ -31,7 +31,9 @@ class pvd_writer {
 public:
     /// One snapshot: its time (s) and its file, relative to the .pvd's directory.
     struct entry {
+        /// Simulated time (s).
         double time;
+        /// The snapshot's file name, relative to the .pvd's directory.
         std::string file;
     };
 
@@ -87,7 +89,9 @@ public:
         return file;
     }
 
+    /// The snapshots recorded so far, in order.
     [[nodiscard]] const std::vector<entry>& entries() const noexcept { return entries_; }
+    /// Where the .pvd is written.
     [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
 
 private:

@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+/// Output and restart: ParaView .vtp snapshots and .pvd series, CSV tables, checkpoints.
 namespace gimlet::io {
 
 /// Floating-point type of an array in the file. float32 halves the file; positions and
@@ -110,7 +111,9 @@ void put(std::vector<char>& bytes, std::size_t& at, Out x) {
 template <class Store>
 class vtp_writer {
 public:
+    /// The particle store, Store.
     using store_type = Store;
+    /// The store's space.
     using space_type = typename Store::space_type;
     /// What the functions of add() receive: a read-only handle (`p.get<fields::mass>()`).
     using particle = particle_ref<const Store>;

@@ -28,18 +28,26 @@ namespace gimlet {
 template <strength::Strength St, eos::Eos E, thermal::Thermal T = thermal::none,
           viscosity::Viscosity V = viscosity::none>
 struct material {
+    /// The strength policy St (strength::Strength).
     using strength_type = St;
+    /// The equation of state E (eos::Eos).
     using eos_type = E;
+    /// The thermal policy T (thermal::Thermal).
     using thermal_type = T;
+    /// The artificial viscosity V (viscosity::Viscosity).
     using viscosity_type = V;
     /// The per-particle fields the material needs: the union of its policies' lists.
     using required_fields = field_union_t<typename St::required_fields, typename E::required_fields, typename T::required_fields,
                                  typename V::required_fields>;
 
     double density;  ///< reference density rho_0 (kg/m^3)
+    /// The deviatoric stress law.
     St strength;
+    /// The pressure law.
     E eos;
+    /// The temperature model (thermal::none: no temperature field).
     T thermal{};
+    /// The artificial viscosity (viscosity::none: none).
     V viscosity{};
 
     /// Throws invalid_parameter for a bad density, an EOS whose own reference density
@@ -88,6 +96,10 @@ concept Material = requires(const M& m) {
 /// linear EOS, from density (kg/m^3), Young's modulus (Pa) and Poisson's ratio.
 using elastic_material = material<strength::linear_elastic, eos::linear>;
 
+/// The elastic_material of density rho_0 (kg/m^3, > 0), Young's modulus E (Pa) and Poisson's
+/// ratio nu (G and K from elastic_moduli::from_young_poisson).
+/// \throws gimlet::invalid_parameter for a density that is not finite and > 0, or moduli that
+/// elastic_moduli::from_young_poisson refuses.
 [[nodiscard]] inline elastic_material make_elastic_material(double density, double young, double poisson) {
     require_positive("density rho0 (kg/m^3)", density);
     const auto k = elastic_moduli::from_young_poisson(young, poisson);

@@ -33,8 +33,7 @@ template <class P>
     if constexpr (S::dim == 2) {
         // Entry by entry into the result: built by embed3 and moved, the tensor is stored by
         // g++ 12 in 8-byte halves and read back in 16-byte loads that straddle them, which the
-        // CPU cannot forward from its store buffer (docs/performance.md, "Four byte-identical
-        // levers").
+        // CPU cannot forward from its store buffer (docs/performance.md, "How the step is organised for speed").
         const auto& a = p.template get<fields::stress>();
         s(0, 0) = a(0, 0), s(1, 0) = a(1, 0), s(2, 0) = real(0);
         s(0, 1) = a(0, 1), s(1, 1) = a(1, 1), s(2, 1) = real(0);
@@ -85,6 +84,7 @@ template <Material M, class P>
     if (!(c2 > 0)) guards |= eos::guard::no_wave_speed;
     return std::sqrt(std::max(real(0), c2));
 }
+/// Longitudinal wave speed of particle p (m/s), as above, without reporting the guards.
 template <Material M, class P>
 [[nodiscard]] auto longitudinal_wave_speed(const P& p, const M& mat) {
     unsigned ignored = 0;
@@ -113,7 +113,7 @@ void update_material_point(const M& mat, const P& p,
     // entry by entry, they reach memory in 8-byte stores, and a 16-byte load of two of them
     // right after (g++ pairs entries in the rotation) waits for the stores to drain
     // (store-to-load forwarding fails). Computed after F, the wait would be 13-15 % of
-    // bench_lanes' update (docs/performance.md, "Stores the loads wait for").
+    // bench_lanes' update (docs/performance.md, "How the step is organised for speed").
     const tensor3 sigma_old = stress3(p);
     tensor3 s = strength::deviator(sigma_old);
     // The midpoint (Cayley) form of F' = L F (Hughes & Winget 1980, eq. 14; docs/physics.md

@@ -27,20 +27,20 @@
 
 namespace gimlet::multi_field {
 
-// Which contact pass of a step this is. Each node records the pairs of fields the deciding
-// pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
-// - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
-//   velocities after the forces of the current stress.
-// - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
-//   (node_view::kept_pairs) and the others stay free, as in the grid update (engaging pairs
-//   afresh there changes a 500 m/s cavity collapse's energy by 3e-7 of the start).
-// - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
-//   velocities the forces of the current stress would give (grid::force); then the pairs it
-//   engaged are constrained on the velocities the stress update will use. So USF engages
-//   contact where MUSL would, while the contact force is compressive, and not on the sign of
-//   a start-of-step relative velocity, which chatters near release.
-// - `keep` (USF, after the grid update): the recorded pairs only, constraint kept, so the
-//   forces work on the velocities that strained the material.
+/// Which contact pass of a step this is. Each node records the pairs of fields the deciding
+/// pass engaged (contact::node_view::engaged_pairs); later passes of the step keep them.
+/// - `decide` (the grid update's pass in MUSL and USL): the policy decides freely, on the
+///   velocities after the forces of the current stress.
+/// - `remap` (MUSL, after re-mapping): the recorded pairs keep their normal constraint
+///   (node_view::kept_pairs) and the others stay free, as in the grid update (engaging pairs
+///   afresh there changes a 500 m/s cavity collapse's energy by 3e-7 of the start).
+/// - `trial` (USF, before the stress update): the policy decides as in `decide`, on the
+///   velocities the forces of the current stress would give (grid::force); then the pairs it
+///   engaged are constrained on the velocities the stress update will use. So USF engages
+///   contact where MUSL would, while the contact force is compressive, and not on the sign of
+///   a start-of-step relative velocity, which chatters near release.
+/// - `keep` (USF, after the grid update): the recorded pairs only, constraint kept, so the
+///   forces work on the velocities that strained the material.
 enum class pass { decide, remap, trial, keep };
 
 
@@ -51,29 +51,31 @@ enum class pass { decide, remap, trial, keep };
 template <Space S>
 class exchange {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
 
     /// Whether two or more fields have mass above the cut-off at `node`, as the step's
     /// find_shared_nodes found it (call that first).
     [[nodiscard]] bool shared(std::size_t node) const noexcept { return shared_index_[node] >= 0; }
 
-    // The nodes where two or more fields have mass above the cut-off, with each field's outward
-    // normal, each pair's normal and each field's furthest particle centre along it
-    // (contact::node_view::reach), from the positions at the start of the step. Only these
-    // nodes take part in contact, and the masses do not change within a step. mass[i] is
-    // particle i's mass, for the fields' mass gradients at these nodes. Field f belongs
-    // to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
-    // each node of its stencil in turn, the index of the field entry its mass went to there
-    // (field * nodes + node). for_each_particle(rows, f) calls f(i) for every particle whose
-    // stencil reaches a node row r (of the last axis) with rows[r] != 0 (it may call it for
-    // others too), never for two particles that share a node at once, and for those of each
-    // node in the scatter's order: the mass gradients are sums in that order.
-    //
-    // The pass over every node runs in blocks of nodes, on `threads` threads where `parallel`:
-    // each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
-    // order, and each block fills its part. The arrays are those of one pass in node order,
-    // whatever the thread count.
+    /// The nodes where two or more fields have mass above the cut-off, with each field's outward
+    /// normal, each pair's normal and each field's furthest particle centre along it
+    /// (contact::node_view::reach), from the positions at the start of the step. Only these
+    /// nodes take part in contact, and the masses do not change within a step. mass[i] is
+    /// particle i's mass, for the fields' mass gradients at these nodes. Field f belongs
+    /// to body f / fields_per_body; entries_of(i) gives particle i's entry chooser: called with
+    /// each node of its stencil in turn, the index of the field entry its mass went to there
+    /// (field * nodes + node). for_each_particle(rows, f) calls f(i) for every particle whose
+    /// stencil reaches a node row r (of the last axis) with rows[r] != 0 (it may call it for
+    /// others too), never for two particles that share a node at once, and for those of each
+    /// node in the scatter's order: the mass gradients are sums in that order.
+    ///
+    /// The pass over every node runs in blocks of nodes, on `threads` threads where `parallel`:
+    /// each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
+    /// order, and each block fills its part. The arrays are those of one pass in node order,
+    /// whatever the thread count.
     template <class Stencils, class Masses, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
                            const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
@@ -95,8 +97,8 @@ public:
         reaches(grid, stencils, entries_of, for_each_particle);
     }
 
-    // At every node shared by two or more fields, let the contact policy correct the fields'
-    // momenta (docs/physics.md section 3), then refresh their velocities and the walls.
+    /// At every node shared by two or more fields, let the contact policy correct the fields'
+    /// momenta (docs/physics.md section 3), then refresh their velocities and the walls.
     template <contact::Contact C>
     void resolve(pass pass, grid<S>& grid, C& contact, real dt, real cutoff) {
         const std::size_t nodes = grid.size();

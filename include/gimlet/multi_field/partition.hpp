@@ -11,6 +11,8 @@
 #include <concepts>
 #include <cstddef>
 
+/// Multi-field contact's framework: how bodies are divided among velocity fields
+/// (multi_field::Partition) and the contact passes at shared nodes.
 namespace gimlet::multi_field {
 
 /// How multi-field contact divides each body among velocity fields. Contact acts between fields
@@ -79,18 +81,26 @@ concept Partition = requires {
 /// where f(k) writes only entry k. f must not throw.
 template <class Store, class Stencils, class Grid, class BySlab, class ByIndex>
 struct partition_view {
+    /// The particles: writable in `initialize`, read-only in `prepare`.
     Store& particles;
+    /// Each particle's stencil at the current positions, by particle index.
     const Stencils& stencils;
+    /// The background grid.
     const Grid& grid;
+    /// Number of bodies in the scene.
     std::size_t bodies;
+    /// `for_each_particle_by_slab(f)` and `(rows, f)`: the race-free particle loops described above.
     BySlab for_each_particle_by_slab;
+    /// `for_each_index(count, f)`: f(k) for k in [0, count), split between the solver's threads.
     ByIndex for_each_index;
 };
 
 /// One velocity field per body (Bardenhagen et al. 2000): the default. A body never touches
 /// itself; its particles share one field wherever they meet.
 struct by_body {
+    /// It reads no per-particle state.
     using required_fields = field_list<>;
+    /// One field per body.
     static constexpr std::size_t fields_per_body = 1;
 };
 

@@ -32,7 +32,9 @@ namespace fields {
 /// multi_field::self_contact when the solver is built; carried by the material (the current
 /// normal is cof(F) times it).
 struct surface_normal {
+    /// Per particle: an S::vector.
     template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
     static constexpr const char* name = "surface_normal";
 };
 }  // namespace fields
@@ -61,9 +63,12 @@ namespace multi_field {
 /// - `enabled = false` keeps one field per body everywhere (results as multi_field::by_body);
 ///   a scene without voids pays for `prepare` only.
 struct self_contact {
+    /// Keeps each particle's reference surface normal.
     using required_fields = field_list<fields::surface_normal>;
+    /// Two fields per body: the two sides of a closing void.
     static constexpr std::size_t fields_per_body = 2;
 
+    /// False: one field per body everywhere (as multi_field::by_body).
     bool enabled = true;
     /// Particles whose surface field is below this fraction of the body's largest are bulk; in
     /// (0, 1), checked when the solver is built (at 0 round-off gives bulk particles normals).

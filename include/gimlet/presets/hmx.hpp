@@ -13,6 +13,7 @@
 #include "gimlet/thermal/isentrope_temperature.hpp"
 #include "gimlet/viscosity/bulk.hpp"
 
+/// Ready-made materials with published constants (HMX).
 namespace gimlet::presets {
 
 /// The reference paper's HMX constants (its Table of parameters; docs/physics.md section 7).

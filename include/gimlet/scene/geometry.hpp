@@ -26,7 +26,10 @@ concept Region = requires(const R& r, const typename S::vector& x) {
 template <Space S>
 class box {
 public:
+    /// A point of S.
     using vector = typename S::vector;
+    /// \param lo lower corner (m); \param hi upper corner (m).
+    /// \throws gimlet::invalid_parameter unless every coordinate is finite and hi > lo on every axis.
     box(const vector& lo, const vector& hi) : lo_(lo), hi_(hi) {
         for (int d = 0; d < S::dim; ++d) {
             require(std::isfinite(double(lo[d])) && std::isfinite(double(hi[d])) && hi[d] > lo[d],
@@ -34,10 +37,13 @@ public:
                     double(hi[d]) - double(lo[d]), "finite and > 0");
         }
     }
+    /// True if x lies in the box or on its boundary.
     [[nodiscard]] bool contains(const vector& x) const {
         return (x.array() >= lo_.array()).all() && (x.array() <= hi_.array()).all();
     }
+    /// The lower corner (m).
     [[nodiscard]] vector lower() const { return lo_; }
+    /// The upper corner (m).
     [[nodiscard]] vector upper() const { return hi_; }
 
 private:
@@ -48,16 +54,25 @@ private:
 template <Space S>
 class ball {
 public:
+    /// A point of S.
     using vector = typename S::vector;
+    /// The scalar type of S.
     using real = typename S::real;
+    /// \param centre the centre (m); \param radius the radius (m).
+    /// \throws gimlet::invalid_parameter unless radius > 0 and the centre is finite.
     ball(const vector& centre, real radius) : c_(centre), r_(radius) {
         require_positive("ball radius (m)", double(radius));
         for (int d = 0; d < S::dim; ++d) require_finite("ball centre coordinate (m)", double(centre[d]));
     }
+    /// True if x lies in the ball or on its sphere.
     [[nodiscard]] bool contains(const vector& x) const { return (x - c_).squaredNorm() <= r_ * r_; }
+    /// The lower corner of the bounding box: centre - radius (m).
     [[nodiscard]] vector lower() const { return c_.array() - r_; }
+    /// The upper corner of the bounding box: centre + radius (m).
     [[nodiscard]] vector upper() const { return c_.array() + r_; }
+    /// The centre (m).
     [[nodiscard]] const vector& centre() const { return c_; }
+    /// The radius (m).
     [[nodiscard]] real radius() const { return r_; }
 
 private:
@@ -89,6 +104,8 @@ namespace gimlet::scene {
 template <class A, class B>
 class difference {
 public:
+    /// \param a the region kept; \param b the region removed from it.
+    /// \throws gimlet::invalid_parameter if b does not overlap a (see the class's comment).
     difference(A a, B b) : a_(std::move(a)), b_(std::move(b)) {
         if constexpr (gimlet::detail::is_scene_box<A> && gimlet::detail::is_scene_ball<B>) {
             double nearest = 0;
@@ -115,13 +132,18 @@ public:
             }
         }
     }
+    /// True if x is in a and not in b.
     template <class V>
     [[nodiscard]] bool contains(const V& x) const {
         return a_.contains(x) && !b_.contains(x);
     }
+    /// The lower corner of a's bounding box (b only removes).
     [[nodiscard]] auto lower() const { return a_.lower(); }
+    /// The upper corner of a's bounding box.
     [[nodiscard]] auto upper() const { return a_.upper(); }
+    /// The region kept, a.
     [[nodiscard]] const A& outer() const { return a_; }
+    /// The region removed, b.
     [[nodiscard]] const B& removed() const { return b_; }
 
 private:

@@ -15,18 +15,22 @@
 #include <string>
 #include <vector>
 
+/// Scene set-up: the grid, the bodies, and the regions they fill.
 namespace gimlet::scene {
 
 /// One body: a region filled with particles of one material, moving at an initial velocity.
 template <Space S, Material M>
 struct body {
+    /// A position or velocity: S::vector.
     using vector = typename S::vector;
     std::string name;                          ///< used in messages and output
     M material;                                ///< its parameter values
     vector velocity = vector::Zero();          ///< initial velocity (m/s)
     int particles_per_cell = 2;                ///< per axis; particle size is h / this
     std::function<bool(const vector&)> contains;  ///< the region (set-up only, never in the step)
+    ///@{
     vector lower = vector::Zero(), upper = vector::Zero();  ///< the region's bounding box
+    ///@}
 };
 
 /// The grid and the bodies of a simulation.
@@ -34,13 +38,22 @@ struct body {
 template <Space S, Material M>
 class scene {
 public:
+    /// A position or velocity: S::vector.
     using vector = typename S::vector;
+    /// The scene's body type.
     using body_type = body<S, M>;
 
+    /// A scene with no bodies on the domain `grid` (checked when the solver builds its grid).
     explicit scene(const grid_spec<S>& grid) : grid_(grid) {}
 
     /// Add a body filling `region`. Returns the body id (its index).
+    /// \param region             where the body is (scene::Region: box, ball, difference, ...).
+    /// \param material           its material (validated here: material::validate()).
+    /// \param velocity           its initial velocity (m/s), finite.
     /// \param particles_per_cell particles per cell per axis, 1 to 8.
+    /// \param name               its name in messages and output; empty: "body <id>".
+    /// \throws gimlet::invalid_parameter for a bad material, velocity or particles_per_cell, or a
+    ///         region whose bounding box is not finite and ordered.
     template <Region<S> R>
     std::uint32_t add_body(const R& region, const M& material, const vector& velocity,
                            int particles_per_cell = 2, std::string name = {}) {
@@ -62,7 +75,9 @@ public:
         return static_cast<std::uint32_t>(bodies_.size() - 1);
     }
 
+    /// The domain.
     [[nodiscard]] const grid_spec<S>& grid() const noexcept { return grid_; }
+    /// The bodies, in the order added (their ids).
     [[nodiscard]] const std::vector<body_type>& bodies() const noexcept { return bodies_; }
 
 private:

@@ -18,7 +18,9 @@ namespace gimlet::shape {
 /// 1 + t, t, u, 1 + u; the inner two share one cubic (in t and in u), the outer two another.
 struct bspline_cubic {
     static constexpr const char* name = "bspline_cubic";  ///< for output and tables
+    /// Four nodes per axis.
     static constexpr int stencil = 4;
+    /// It reads no per-particle field.
     using required_fields = gimlet::field_list<>;
 
     /// \tparam Real float or double. The half-width is unused.

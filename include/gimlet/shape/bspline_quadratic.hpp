@@ -18,7 +18,9 @@ namespace gimlet::shape {
 /// below (no per-node branch); each is N at that node's distance, 1 + f, f and 1 - f.
 struct bspline_quadratic {
     static constexpr const char* name = "bspline_quadratic";  ///< for output and tables
+    /// Three nodes per axis.
     static constexpr int stencil = 3;
+    /// It reads no per-particle field.
     using required_fields = gimlet::field_list<>;
 
     /// \tparam Real float or double. The half-width is unused.

@@ -11,6 +11,7 @@
 
 #include <concepts>
 
+/// Shape-function policies: the grid weights of a particle (shape::Shape).
 namespace gimlet::shape {
 
 /// A shape-function policy.

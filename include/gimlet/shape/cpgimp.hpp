@@ -15,6 +15,7 @@ namespace gimlet::shape {
 /// `l_d = l0_d |F_dd|`, the stretch along that axis; shear is not followed (that needs CPDI).
 struct cpgimp : detail::gimp_weights_of<cpgimp> {
     static constexpr const char* name = "cpgimp";  ///< for output and tables
+    /// It reads the particle's initial domain half-width.
     using required_fields = gimlet::field_list<gimlet::fields::domain_half_width>;
 
     /// `domain_half_width_d * |F_dd| / h` per axis, in cell units, at most 1/2.

@@ -16,7 +16,9 @@ namespace gimlet::shape {
 /// it keeps sum(dw) = 0 and sum(dw x_i) = 1 exact there too.
 struct linear {
     static constexpr const char* name = "linear";  ///< for output and tables
+    /// Two nodes per axis.
     static constexpr int stencil = 2;
+    /// It reads no per-particle field.
     using required_fields = gimlet::field_list<>;
 
     /// \tparam Real float or double. The half-width is unused: a point particle.

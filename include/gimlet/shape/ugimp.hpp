@@ -21,6 +21,7 @@ namespace gimlet::shape {
 /// paper_phi). The 1-D function and its branches are in detail::gimp_kernel.
 struct ugimp : detail::gimp_weights_of<ugimp> {
     static constexpr const char* name = "ugimp";  ///< for output and tables
+    /// It reads the particle's domain half-width.
     using required_fields = gimlet::field_list<gimlet::fields::domain_half_width>;
 
     /// The particle's initial half-width in cell units: `domain_half_width / h`.

@@ -72,22 +72,35 @@ class solver;
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 class solver_core {
 public:
+    /// The space S (dimension and scalar type).
     using space_type = S;
+    /// The scalar type of S.
     using real = typename S::real;
+    /// A position or velocity: S::vector.
     using vector = typename S::vector;
+    /// A Dim x Dim tensor: S::matrix.
     using matrix = typename S::matrix;
+    /// A 3x3 tensor: S::tensor3.
     using tensor3 = typename S::tensor3;
+    /// The shape-function policy Sh.
     using shape_type = Sh;
+    /// The material type M.
     using material_type = M;
+    /// The partition of bodies into velocity fields, Part.
     using partition_type = Part;
+    /// The field_list of the particles, Fields.
     using particle_fields = Fields;
+    /// The particle storage.
     using store_type = particle_store<S, particle_fields>;
+    /// Number of axes, 2 or 3.
     static constexpr int dim = S::dim;
 
+    /// True if the grid keeps a velocity field per body (MultiField).
     static constexpr bool multi_field = MultiField;
     // A policy's optional members in a form the solver would skip stop the build with the
     // checker's sentence instead.
     static_assert(multi_field::check<Part>());
+    /// Velocity fields per body (1 unless the partition splits bodies); at most 255.
     static constexpr std::size_t fields_per_body = Part::fields_per_body;
     // Fields of one body that no contact keeps apart would pass through each other.
     static_assert(multi_field || fields_per_body == 1,
@@ -131,9 +144,13 @@ public:
         pending_health_.valid = false;  // a time step computed before the change no longer applies
         return particles_;
     }
+    /// The particles, read-only.
     [[nodiscard]] const store_type& particles() const noexcept { return particles_; }
+    /// The background grid (node arithmetic and nodal fields).
     [[nodiscard]] const grid<S>& background_grid() const noexcept { return grid_; }
+    /// The scene's materials, indexed by fields::body.
     [[nodiscard]] const std::vector<M>& materials() const noexcept { return materials_; }
+    /// The options the solver was built with.
     [[nodiscard]] const solver_options<S>& options() const noexcept { return options_; }
     /// The threads the solver's parallel loops use: options().threads where it is positive,
     /// otherwise OpenMP's default (1 without OpenMP). An observer with a parallel pass of its
@@ -143,10 +160,12 @@ public:
     }
     /// The partition of bodies into velocity fields (multi_field::Partition).
     [[nodiscard]] const Part& partition() const noexcept { return partition_; }
+    /// Simulated time so far (s).
     [[nodiscard]] real time() const noexcept { return time_; }
 
     /// Set the clock of a run resumed from saved particles (io/checkpoint.hpp): the simulated
     /// time (s) and the number of steps already taken. The next step re-checks the particles.
+    /// \throws gimlet::invalid_parameter if t is negative or not finite.
     void resume_at(real t, std::uint64_t steps_taken) {
         require(std::isfinite(double(t)) && t >= 0, "resume time (s)", double(t), "finite and >= 0");
         time_ = t;
@@ -154,6 +173,7 @@ public:
         state_touched_ = true;
         pending_health_.valid = false;
     }
+    /// Steps taken so far (counting those before a resume).
     [[nodiscard]] std::uint64_t steps() const noexcept { return steps_; }
     /// How many particles the last step found light (solver_options::light_particle_ratio),
     /// those left to FLIP because no node of theirs had other mass included.
@@ -176,8 +196,7 @@ private:
     // which on a 2-core host costs as much as the work. And a slow core (another job on it, a
     // busy neighbour of a virtual machine) or a share of costlier particles holds up the loop by
     // no more than the chunk its thread has claimed, where fixed shares alone wait for the whole
-    // share (docs/performance.md, "Each thread its own particles" and "Shares that are taken
-    // over").
+    // share (docs/performance.md, "How the step is organised for speed" and "How the step is organised for speed").
     // Every particle's result, and every node's sum (slab by slab, in particle order), is
     // independent of which thread runs it, so the schedule costs no determinism.
     //

@@ -20,6 +20,7 @@ namespace gimlet {
 /// run throws a numerical_error instead and is not counted here. Counted when the guarded value
 /// enters a step (the wave speeds of a time step the solver chose).
 struct health_events {
+    /// Number of guard kinds (eos::guard::kinds).
     static constexpr std::size_t kinds = eos::guard::kinds;
     /// Column names, in eos::guard bit order.
     static constexpr std::array<const char*, kinds> names = {"eos_compression_capped", "eos_negative_modulus",
@@ -29,8 +30,10 @@ struct health_events {
         "the EOS's tangent modulus was taken at the capped compression (the singularity margin)",
         "the EOS's tangent modulus was negative and taken as 0",
         "(K + 4G/3)/rho was not positive: the wave speed was taken as 0"};
+    /// How often each kind acted, in eos::guard bit order.
     std::array<std::uint64_t, kinds> count{};
     std::array<std::string, kinds> first;  ///< "step N (t = ...): particle i (body b) at (x, y) m: ..."; empty if none
+    /// Sum of count over the kinds.
     [[nodiscard]] std::uint64_t total() const noexcept {
         std::uint64_t n = 0;
         for (auto c : count) n += c;

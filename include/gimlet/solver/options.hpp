@@ -22,6 +22,7 @@ enum class update_scheme {
 /// Run-time options of the step. Validated when the solver is built.
 template <Space S>
 struct solver_options {
+    /// Order of the stress update within a step (default MUSL).
     update_scheme scheme = update_scheme::musl;
     /// PIC fraction alpha in [0, 1]: v_p = (1 - alpha) v_FLIP + alpha v_PIC (0 = pure FLIP, and
     /// nothing of the blend is computed). The kinetic energy the blend removes goes into the
@@ -57,7 +58,7 @@ struct solver_options {
     /// removes most of it. Momentum is kept. Each iteration costs a gather and a scatter over
     /// the stencils, and the grid's highest frequency rises by up to sqrt(k + 1), so
     /// cfl sqrt(k + 1) must stay <= 1 (in lasting tension, noise grows the faster the closer it
-    /// is to 1: docs/equations.md, "Known limitations"); MUSL and USF only (USL is refused).
+    /// is to 1: docs/equations.md, "Stability of the step in tension"); MUSL and USF only (USL is refused).
     /// 0 = the lumped mass (the default: nothing runs). In [0, 8] (4 iterations converge on a
     /// regular lattice). It keeps each particle's node entries as 32-bit numbers (4 bytes per
     /// stencil node: 36 in 2-D and 108 in 3-D with uGIMP), so the solver refuses it on a grid of
@@ -100,6 +101,9 @@ struct solver_options {
     /// cleared every step. Off by default (see docs/equations.md).
     bool volumetric_average = false;
 
+    /// \throws gimlet::invalid_parameter naming the first option outside its valid range, or a
+    /// combination refused (USL with cfl > 0.7 or the consistent mass; volume_filter without the
+    /// consistent mass; cfl above 1/sqrt(consistent_mass_iterations + 1)).
     void validate() const {
         require(pic_fraction >= 0.0 && pic_fraction <= 1.0, "pic_fraction", pic_fraction, "[0, 1]");
         require(cfl > 0.0 && cfl <= 1.0, "cfl (Courant number)", cfl, "(0, 1]");
@@ -142,12 +146,15 @@ struct step_timings {
     double contact = 0;            ///< multi-field contact at nodes shared by bodies
     double grid_to_particle = 0;   ///< G2P velocity and position update (with MUSL's re-map to the grid)
     double material_update = 0;    ///< velocity gradient, constitutive update, checks
+    ///@{
     /// Two parts of particle_to_grid, counted in it too (not in total() again), to tell what in
     /// it scales with the threads: each particle's weights and gradients at x^n, and grouping
     /// the particles into the scatter's slabs with the partition's per-step preparation
     /// (self-contact's split nodes) and the choice of fields. The rest of particle_to_grid is
     /// the clearing, the scatters, and the light particles' and shared nodes' searches.
     double weights = 0, slabs = 0;
+    ///@}
+    /// The time of the six phases above: sort through material_update (s).
     [[nodiscard]] double total() const noexcept {
         return sort + particle_to_grid + grid_update + contact + grid_to_particle + material_update;
     }

@@ -121,7 +121,7 @@ private:
         // stay near its core, and a thread done early takes over slabs of the others' shares
         // (thread_shares; solver/core.hpp, above parallel_threshold, says why). A colour's slabs
         // are shared by count, not by the particles they hold (a split by particles measured
-        // no faster on 2 threads: docs/performance.md, "Each thread its own particles").
+        // no faster on 2 threads: docs/performance.md, "How the step is organised for speed").
         colour_shares shares(colour_slabs_, threads, parallel);
         GIMLET_OMP(parallel num_threads(shares.of[0].team()))
         for (std::size_t c = 0; c <= shares.last; ++c) {

@@ -46,7 +46,9 @@ class solver : public solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFi
 
 public:
     using typename core::real;
+    /// The contact policy C.
     using contact_type = C;
+    /// The solver_core this solver derives from.
     using core_type = core;
     // A policy's optional members in a form the solver would skip (an after_contact that is not
     // const, say) stop the build with the checker's sentence instead.
@@ -54,6 +56,8 @@ public:
 
     /// Build the particles of a scene. Throws invalid_parameter for bad options, bodies outside
     /// the grid, overlapping bodies or a body with no particles.
+    /// \param sc the scene: the grid and the bodies.
+    /// \param options the solver's options (solver_options).
     /// \param contact the contact policy's parameters (e.g. friction).
     /// \param partition the partition's parameters (multi_field::Partition).
     explicit solver(const scene::scene<S, M>& sc, const solver_options<S>& options = {}, const C& contact = C{},

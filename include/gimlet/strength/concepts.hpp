@@ -7,6 +7,7 @@
 
 #include <concepts>
 
+/// Strength policies: the deviatoric stress of a material point (strength::Strength).
 namespace gimlet::strength {
 
 /// A strength policy advances the deviatoric Cauchy stress of one material point.

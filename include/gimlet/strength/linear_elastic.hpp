@@ -18,6 +18,7 @@ namespace gimlet::strength {
 /// an unstressed one unstressed. Combine with an EOS for the pressure (e.g. eos::linear).
 class linear_elastic {
 public:
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
     /// Its templates compute lane by lane for a lane type (gimlet::lane_safe): no branch on a
     /// value, nothing read through the handle.
@@ -28,6 +29,7 @@ public:
         require_positive("shear modulus G (Pa)", shear_modulus);
     }
 
+    /// Jaumann-rotate s and add 2 G dt D'; returns 0 (nothing dissipated).
     template <class Real, class P>
     GIMLET_INLINE Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& /*p*/) const {
         s = jaumann_rotate(st, s);
@@ -35,11 +37,13 @@ public:
         return Real(0);
     }
 
+    /// G, constant.
     template <class Real, class P>
     [[nodiscard]] Real shear_modulus(const point_state<Real>& /*state*/, const P& /*p*/) const {
         return Real(g_);
     }
 
+    /// G (Pa).
     [[nodiscard]] double shear_modulus() const noexcept { return g_; }
 
 private:

@@ -25,6 +25,7 @@ namespace gimlet::strength {
 /// The 3x3 deviator includes s_zz in plane strain, so the yield surface is the 3-D one.
 class von_mises {
 public:
+    /// Keeps the equivalent plastic strain and the plastic work per unit mass.
     using required_fields = field_list<fields::plastic_strain, fields::plastic_work>;
 
     /// \param shear_modulus G (Pa) > 0; \param yield_stress Y0 (Pa) > 0;
@@ -36,6 +37,8 @@ public:
         require_non_negative("hardening modulus H (Pa)", hardening_modulus);
     }
 
+    /// Jaumann-rotate s, add the elastic predictor and return radially to the yield surface;
+    /// updates the plastic strain and work and returns the plastic work of the step (J/kg).
     template <class Real, class P>
     GIMLET_INLINE Real update(const point_step<Real>& st, Eigen::Matrix<Real, 3, 3>& s, const P& p) const {
         s = jaumann_rotate(st, s);
@@ -53,13 +56,17 @@ public:
         return dw;
     }
 
+    /// G, constant.
     template <class Real, class P>
     [[nodiscard]] Real shear_modulus(const point_state<Real>& /*state*/, const P& /*p*/) const {
         return Real(g_);
     }
 
+    /// G (Pa).
     [[nodiscard]] double shear_modulus() const noexcept { return g_; }
+    /// Y0 (Pa), the initial yield stress.
     [[nodiscard]] double yield_stress() const noexcept { return y0_; }
+    /// H (Pa), the linear hardening modulus.
     [[nodiscard]] double hardening_modulus() const noexcept { return h_; }
 
 private:

@@ -7,6 +7,7 @@
 
 #include <concepts>
 
+/// Thermal policies: the temperature of a material point (thermal::Thermal).
 namespace gimlet::thermal {
 
 /// A thermal policy advances the temperature of a material point.

@@ -31,7 +31,9 @@ enum class expansion {
 template <expansion X = expansion::hugoniot>
 class hugoniot_heating {
 public:
+    /// A real thermal policy: the solver stores and updates the temperature (thermal::Thermal).
     static constexpr bool enabled = true;
+    /// It keeps the temperature field.
     using required_fields = field_list<fields::temperature>;
 
     /// \param density0 rho_0 (kg/m^3); \param sound_speed c_0 (m/s); \param slope s (> 1);
@@ -43,12 +45,15 @@ public:
         detail::validate_shock_parameters(density0, sound_speed, slope, gruneisen, specific_heat, initial_temperature);
     }
 
+    /// Set a new particle's temperature to T_0.
     template <class P>
     void initialize(const P& p) const {
         auto& t = p.template get<fields::temperature>();
         t = static_cast<std::remove_cvref_t<decltype(t)>>(t0_);
     }
 
+    /// Advance the temperature over the step: advance() from V_old = V_0 J_old to V = V_0 J, plus
+    /// `dissipated` / c_v (plastic work, J/kg).
     template <class Real, class P>
     void update(const point_step<Real>& st, Real dissipated, const P& p) const {
         Real& t = p.template get<fields::temperature>();
@@ -76,11 +81,17 @@ public:
         return s_ * c0_ * c0_ * (v0_ - v) * (v0_ - v) / (cv_ * d * d * d);
     }
 
+    /// rho_0 (kg/m^3).
     [[nodiscard]] double density0() const noexcept { return 1.0 / v0_; }
+    /// c_0 (m/s), the Hugoniot's bulk sound speed.
     [[nodiscard]] double sound_speed() const noexcept { return c0_; }
+    /// s, the slope of the Hugoniot's U_s-u_p line.
     [[nodiscard]] double slope() const noexcept { return s_; }
+    /// c_v (J/(kg K)).
     [[nodiscard]] double specific_heat() const noexcept { return cv_; }
+    /// T_0 (K), the initial temperature.
     [[nodiscard]] double initial_temperature() const noexcept { return t0_; }
+    /// Gamma, the Grueneisen parameter.
     [[nodiscard]] double gruneisen() const noexcept { return gamma_; }
 
 private:

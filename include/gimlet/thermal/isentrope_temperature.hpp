@@ -50,7 +50,9 @@ namespace gimlet::thermal {
 /// isentrope() and temperature() compute it exactly. The table is shared between copies.
 class isentrope_temperature {
 public:
+    /// A real thermal policy: the solver stores and updates the temperature (thermal::Thermal).
     static constexpr bool enabled = true;
+    /// It keeps the temperature field.
     using required_fields = field_list<fields::temperature>;
 
     /// \param density0 rho_0 (kg/m^3); \param sound_speed c_0 (m/s); \param slope s (> 1);
@@ -70,6 +72,7 @@ public:
         table_ = std::make_shared<const table>(build());
     }
 
+    /// Set a new particle's temperature to T_0.
     template <class P>
     void initialize(const P& p) const {
         auto& t = p.template get<fields::temperature>();
@@ -114,12 +117,19 @@ public:
         return hugoniot_pressure(j) + gamma_ * rho0_ / j * (reference_energy(j) - hugoniot_energy(j));
     }
 
+    /// rho_0 (kg/m^3).
     [[nodiscard]] double density0() const noexcept { return rho0_; }
+    /// c_0 (m/s), the Hugoniot's bulk sound speed.
     [[nodiscard]] double sound_speed() const noexcept { return c0_; }
+    /// s, the slope of the Hugoniot's U_s-u_p line.
     [[nodiscard]] double slope() const noexcept { return s_; }
+    /// c_v (J/(kg K)).
     [[nodiscard]] double specific_heat() const noexcept { return cv_; }
+    /// T_0 (K), the temperature at the reference state.
     [[nodiscard]] double initial_temperature() const noexcept { return t0_; }
+    /// Gamma, the Grueneisen parameter.
     [[nodiscard]] double gruneisen() const noexcept { return gamma_; }
+    /// How far (K) e_th may fall below the reference isentrope, as c_v times it, before the update stops the run.
     [[nodiscard]] double cold_tolerance() const noexcept { return cold_; }
 
 private:
@@ -134,13 +144,17 @@ private:
         std::vector<double> e, de_dx;    ///< e_s and de_s/dx at the nodes
         std::vector<double> ts, dts_dx;  ///< T_s and dT_s/dx at the nodes
 
-        // Cubic Hermite on [x_k, x_k+1] with the exact slopes, at u = (x - x0) / dx in
-        // [0, nodes - 1): the node k and the four basis values. Its error is
-        // f^(4)(xi) / 4! (x - x_k)^2 (x - x_k+1)^2, at most dx^4 / 384 max |f^(4)| (the Hermite
-        // remainder: Burden & Faires, Numerical Analysis, 9th ed., Theorem 3.9).
+        /// Cubic Hermite on [x_k, x_k+1] with the exact slopes, at u = (x - x0) / dx in
+        /// [0, nodes - 1): the node k and the four basis values. Its error is
+        /// f^(4)(xi) / 4! (x - x_k)^2 (x - x_k+1)^2, at most dx^4 / 384 max |f^(4)| (the Hermite
+        /// remainder: Burden & Faires, Numerical Analysis, 9th ed., Theorem 3.9).
         struct place {
+            /// The node at the cell's lower end.
             std::size_t k;
+            ///@{
+            /// Hermite basis value at u: h00, h10 weigh the lower node's value and slope, h01, h11 the upper node's.
             double h00, h10, h01, h11;
+            ///@}
         };
         GIMLET_INLINE static place hermite(double u) {
             const auto k = static_cast<std::size_t>(u);

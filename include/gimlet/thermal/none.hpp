@@ -9,7 +9,9 @@ namespace gimlet::thermal {
 
 /// Thermal effects off. A scene with this policy has no temperature column.
 struct none {
+    /// Off: the solver stores no temperature and compiles no thermal code.
     static constexpr bool enabled = false;
+    /// It keeps no per-particle state.
     using required_fields = field_list<>;
 };
 

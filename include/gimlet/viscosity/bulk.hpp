@@ -13,6 +13,7 @@
 
 namespace gimlet::viscosity {
 
+/// Bulk artificial viscosity, quadratic and linear in the compression rate:
 /// \f[ q = \rho\, h \left( b_2^2\, h\, \dot\varepsilon_v^2 + b_1\, c\, |\dot\varepsilon_v| \right)
 ///     \quad \text{if } \dot\varepsilon_v = \mathrm{tr} D < 0, \qquad q = 0 \text{ otherwise} \f]
 /// (von Neumann & Richtmyer 1950 quadratic term, Landshoff 1955 linear term, with the terms of
@@ -28,8 +29,11 @@ namespace gimlet::viscosity {
 /// dt = (2 / omega) (sqrt(1 + xi^2) - xi), xi = Q / c, of the Abaqus/Explicit theory manual).
 class bulk {
 public:
+    /// On: the solver computes q (viscosity::Viscosity).
     static constexpr bool enabled = true;
+    /// `pressure` takes the wave speed as a callable and asks for it only in compression.
     static constexpr bool lazy_sound_speed = true;  // q reads the wave speed only in compression
+    /// Keeps the compression rate for the time step (signal_speed).
     using required_fields = field_list<fields::compression_rate>;
 
     /// \param quadratic b2 >= 0 (q's quadratic term has b2 squared); \param linear b1 >= 0.
@@ -64,7 +68,9 @@ public:
         return q + std::sqrt(q * q + sound_speed * sound_speed);
     }
 
+    /// b2 (q's quadratic term has b2 squared).
     [[nodiscard]] double quadratic() const noexcept { return b2_; }
+    /// b1, the linear coefficient.
     [[nodiscard]] double linear() const noexcept { return b1_; }
 
 private:

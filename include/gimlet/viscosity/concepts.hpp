@@ -7,6 +7,8 @@
 
 #include <concepts>
 
+/// Artificial-viscosity policies: the viscous pressure q of a material point
+/// (viscosity::Viscosity).
 namespace gimlet::viscosity {
 
 /// Whether viscosity V asks for the wave speed as a callable (`lazy_sound_speed`: see

@@ -8,8 +8,7 @@
 /// and nodes near its core from loop to loop; taking over the rest keeps a slow core (another
 /// job on it, a virtual machine's neighbour, a small core of a hybrid processor) or a share of
 /// costlier items from holding up the loop by more than the chunk its thread has claimed.
-/// docs/performance.md, "Shares that are taken over" and "Shares taken over, the loop written
-/// at each site", has the measurements behind it.
+/// docs/performance.md, "How the step is organised for speed" and "How the step is organised for speed", has the measurements behind it.
 ///
 /// It departs from the paper: the owner claims a shrinking part of what is left (guided
 /// self-scheduling, below) rather than a fixed 1/threads of it, and a thread done early goes
@@ -45,8 +44,7 @@ namespace gimlet::detail {
 /// after its own (wrapping round) that are not done. Over the team, every i in [0, n) exactly
 /// once, whatever the team's size (a team smaller than the shares takes over the rest). The
 /// loop is written out at each site rather than taken as a lambda: a template driver per loop
-/// cost the solver's test units about a tenth more compile time (docs/performance.md, "Shares
-/// that are taken over"). Where `parallel` is false the region has one thread, which takes
+/// cost the solver's test units about a tenth more compile time (docs/performance.md, "How the step is organised for speed"). Where `parallel` is false the region has one thread, which takes
 /// the one share from the front, in order. An object runs one loop: a second loop over it
 /// finds every share done and runs nothing. The chunk's end is copied into the loop (`end`):
 /// `claim` sees the chunk, so the compiler would otherwise reload its end on every item.

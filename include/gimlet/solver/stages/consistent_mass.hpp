@@ -40,6 +40,9 @@
 #include <cstdint>
 #include <vector>
 
+/// The optional stages of a step (consistent mass, damping transfer, light particles, volume
+/// filter, volumetric averaging) and the choice of velocity fields: classes that
+/// gimlet::solver_core owns and calls in the order of its scheme.
 namespace gimlet::stages {
 
 /// The consistent-mass stage, called by the grid momentum update of every scheme before the
@@ -57,7 +60,9 @@ namespace gimlet::stages {
 template <Space S, std::size_t Nodes>
 class consistent_mass {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
 
     /// Particle i's node entries in its stencil's order, once this step's first iteration has

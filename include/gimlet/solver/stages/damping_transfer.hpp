@@ -37,7 +37,9 @@ namespace gimlet::stages {
 template <Space S>
 class damping_transfer {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
 
     /// alpha, the share of the PIC velocity in the blend (0: off).

@@ -41,15 +41,18 @@ namespace gimlet::stages {
 /// Writes: the light particles' position and velocity (move); its own per-node and
 /// per-particle state, read by G2P (heavy_mass, momentum) and the velocity gradient.
 /// Chosen at run time (solver_options::light_particle_ratio, and whether any particle can be
-/// light at all: possible()); off, it costs a test a step, and one per particle in the velocity
+/// light at all: check_possible()); off, it costs a test a step, and one per particle in the velocity
 /// gradient.
 ///
 /// \tparam S the space.
 template <Space S>
 class light_particles {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
+    /// S::matrix.
     using matrix = typename S::matrix;
 
     /// How many particles the last step found light.
@@ -65,11 +68,11 @@ public:
     /// The momentum the light particles changed at node entry e (move).
     [[nodiscard]] const vector& momentum(std::size_t e) const { return light_momentum_[e]; }
 
-    // Whether any particle can be light: reference densities only change when the user touches
-    // the particles, and a particle is light only against a denser one on its stencil (in its
-    // field), so none can be where the least dense particle is at least theta times the densest:
-    // of the scene, or with a multi-field contact (whose fields never mix bodies) of each body.
-    // Then nothing below runs.
+    /// Whether any particle can be light: reference densities only change when the user touches
+    /// the particles, and a particle is light only against a denser one on its stencil (in its
+    /// field), so none can be where the least dense particle is at least theta times the densest:
+    /// of the scene, or with a multi-field contact (whose fields never mix bodies) of each body.
+    /// Where none can be, find() returns at once and no particle is light.
     template <class Core>
     void check_possible(const Core& c) {
         const auto& particles = c.particles_;
@@ -88,13 +91,13 @@ public:
             possible_ = possible_ || least[g] < real(c.options_.light_particle_ratio) * most[g];
     }
 
-    // After the step's first scatter: per node entry (so per field), the largest reference
-    // density and the largest current density m_q / V_q of the particles with a nonzero weight
-    // there (both maxima, so the slab scatter's order does not matter); then p is light if
-    // rho0_p < theta max rho0, the maximum over the nodes where p has a nonzero weight. Then, at
-    // the nodes of the light particles' stencils, the mass of the particles that are not light,
-    // sum_q S_iq m_q (a sum of its own rather than m_i less the light mass, whose rounding would
-    // not cancel where the light mass dominates).
+    /// After the step's first scatter: per node entry (so per field), the largest reference
+    /// density and the largest current density m_q / V_q of the particles with a nonzero weight
+    /// there (both maxima, so the slab scatter's order does not matter); then p is light if
+    /// rho0_p < theta max rho0, the maximum over the nodes where p has a nonzero weight. Then, at
+    /// the nodes of the light particles' stencils, the mass of the particles that are not light,
+    /// sum_q S_iq m_q (a sum of its own rather than m_i less the light mass, whose rounding would
+    /// not cancel where the light mass dominates).
     template <class Core>
     void find(Core& c) {
         list_.clear();
@@ -151,10 +154,10 @@ public:
         });
     }
 
-    // A light particle's velocity gradient (instead of sum_i v_i (x) G_ip):
-    // L_p = sum_i (lambda_i v_i + (1 - lambda_i) vbar_p) (x) G_ip with lambda_i = k_i / max_j k_j
-    // and vbar_p = sum_i S_ip k_i v_i / sum_i S_ip k_i: a node that carries little of the densest
-    // material strains the particle by little (docs/equations.md, "Light particles").
+    /// A light particle's velocity gradient (instead of sum_i v_i (x) G_ip):
+    /// L_p = sum_i (lambda_i v_i + (1 - lambda_i) vbar_p) (x) G_ip with lambda_i = k_i / max_j k_j
+    /// and vbar_p = sum_i S_ip k_i v_i / sum_i S_ip k_i: a node that carries little of the densest
+    /// material strains the particle by little (docs/equations.md, "Light particles").
     template <class Core>
     [[nodiscard]] matrix velocity_gradient(const Core& c, std::size_t i, const std::vector<vector>& vg) const {
         matrix L = matrix::Zero();
@@ -178,18 +181,18 @@ public:
         return L;
     }
 
-    // Before the grid-to-particle pass, on one thread in index order: each light particle p takes
-    // v_p' = sum_i S_ip k_i v_i / sum_i S_ip k_i (the nodes' velocities after the grid update) as
-    // its velocity and for its position update. Its momentum change against the velocity the main
-    // pass would give it, D_p = m_p (v_p' - v_p^FLIP + alpha d_p) (FLIP with the damping blend),
-    // is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass)
-    // and summed per node (momentum); G2P hands -momentum(e) to the node's non-light particles in
-    // proportion to S_iq m_q. The kinetic energy this changes is not booked as heat, as the
-    // contact policies do not book theirs (docs/equations.md, "Light particles", says why and how
-    // much). Its FLIP velocity is the one G2P would give it, with its light nodes' forces
-    // (Core::on_light_node, Core::light_node_change). A light particle none of whose nodes has
-    // non-light mass keeps its FLIP velocity (there is nothing to return its momentum to):
-    // lightness::light_flip.
+    /// Before the grid-to-particle pass, on one thread in index order: each light particle p takes
+    /// v_p' = sum_i S_ip k_i v_i / sum_i S_ip k_i (the nodes' velocities after the grid update) as
+    /// its velocity and for its position update. Its momentum change against the velocity the main
+    /// pass would give it, D_p = m_p (v_p' - v_p^FLIP + alpha d_p) (FLIP with the damping blend),
+    /// is split over its nodes in proportion to S_ip m_i^N (m^N: the non-light mass, heavy_mass)
+    /// and summed per node (momentum); G2P hands -momentum(e) to the node's non-light particles in
+    /// proportion to S_iq m_q. The kinetic energy this changes is not booked as heat, as the
+    /// contact policies do not book theirs (docs/equations.md, "Light particles", says why and how
+    /// much). Its FLIP velocity is the one G2P would give it, with its light nodes' forces
+    /// (Core::on_light_node, Core::light_node_change). A light particle none of whose nodes has
+    /// non-light mass keeps its FLIP velocity (there is nothing to return its momentum to):
+    /// lightness::light_flip.
     template <class Core>
     void move(Core& c, real dt) {
         auto& x = c.particles_.template column<fields::position>();

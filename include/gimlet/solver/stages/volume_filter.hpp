@@ -67,7 +67,9 @@ namespace gimlet::stages {
 template <Space S>
 class volume_filter {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
 
     /// J_p <- the projection of J onto the grid, e moved along the isentrope (the file's comment).

@@ -28,13 +28,17 @@ namespace gimlet::stages {
 template <Space S>
 class volumetric_average {
 public:
+    /// The scalar type of S.
     using real = typename S::real;
+    /// S::vector.
     using vector = typename S::vector;
+    /// S::matrix.
     using matrix = typename S::matrix;
+    /// Number of axes, 2 or 3.
     static constexpr int dim = S::dim;
 
-    // Per body (or field) and cell (cell_key), the sums of V_p tr(sigma_p)/dim and of V_p
-    // (averaged_stress).
+    /// Per body (or field) and cell (cell_key), the sums of V_p tr(sigma_p)/dim and of V_p
+    /// (averaged_stress).
     template <class Core>
     void average_stress(Core& c) {
         const std::size_t n = c.materials_.size() * Core::fields_per_body * c.grid_.size();
@@ -49,9 +53,9 @@ public:
         });
     }
 
-    // Per body (or field) and cell (cell_key), the sums of V_p tr L_p and of V_p over its
-    // particles, with L_p from the velocities vg. A particle's cell lies in its own slab, so the
-    // slab colouring keeps the sums free of races and in a fixed order.
+    /// Per body (or field) and cell (cell_key), the sums of V_p tr L_p and of V_p over its
+    /// particles, with L_p from the velocities vg. A particle's cell lies in its own slab, so the
+    /// slab colouring keeps the sums free of races and in a fixed order.
     template <class Core>
     void average_rates(Core& c, const std::vector<vector>& vg) {
         const std::size_t n = c.materials_.size() * Core::fields_per_body * c.grid_.size();
@@ -72,17 +76,17 @@ public:
         });
     }
 
-    // L with its volumetric rate replaced by its cell's mean.
+    /// L with its volumetric rate replaced by its cell's mean.
     template <class Core>
     void averaged_rate(const Core& c, std::size_t i, matrix& L) const {
         const std::size_t k = cell_key(c, i);
         L.diagonal().array() += (cell_rate_[k] / cell_volume_[k] - L.trace()) / real(dim);
     }
 
-    // sigma with its in-plane mean stress tr(sigma)/dim replaced by its cell's volume-weighted
-    // mean (B-bar: the power the forces of V_p times this do on the grid velocities is then
-    // exactly the stress power of the averaged rates, sum_p V_p sigma_p : L-bar_p, so averaging
-    // creates no energy).
+    /// sigma with its in-plane mean stress tr(sigma)/dim replaced by its cell's volume-weighted
+    /// mean (B-bar: the power the forces of V_p times this do on the grid velocities is then
+    /// exactly the stress power of the averaged rates, sum_p V_p sigma_p : L-bar_p, so averaging
+    /// creates no energy).
     template <class Core>
     [[nodiscard]] matrix averaged_stress(const Core& c, std::size_t i, const matrix& sig) const {
         const std::size_t k = cell_key(c, i);
