@@ -5,8 +5,11 @@ plot.py --follow CELL_MM OUTPUT_DIR, to draw the maps while the run goes on: Fol
 
 series.png: D, the relative wall velocity, the temperatures and the hot material against the
 time after the nominal first contact. hot_material.png: the largest mass over the run hotter
-than the bulk shock temperature T_EP(v) by each excess (the cumulative hot-spot curve). map_NNNN.png: pressure and temperature of the particles at each
-snapshot, like the paper's snapshot figures.
+than the bulk shock temperature T_EP(v) by each excess (the cumulative hot-spot curve).
+map_NNNN.png: pressure and temperature of the particles at each snapshot.
+maps_pressure.png, maps_temperature.png (from two snapshots up): every snapshot in one figure
+per quantity, like the paper's snapshot figures. Errors of a --follow run go to plot.log, which
+cavity_collapse names (docs/io.md, "The flagship's output folder").
 """
 import csv
 import math
