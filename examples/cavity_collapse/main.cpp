@@ -477,7 +477,7 @@ int main(int argc, char** argv) try {
                                                      : run(s, io, chosen_law(s.contact));
     if (!figures) return rc;
     if (figures->finish())
-        std::printf("  figures: %s (series.png, map_*.png); ParaView: %s\n", io.out.string().c_str(),
+        std::printf("  figures: %s (series.png, hot_material.png, map_*.png, maps_*.png); ParaView: %s\n", io.out.string().c_str(),
                     (io.out / "snapshots" / "particles.pvd").string().c_str());
     else
         std::printf("  (figures not drawn: needs python3 with matplotlib%s; run %s)\n",

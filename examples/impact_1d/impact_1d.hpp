@@ -112,6 +112,7 @@ struct result {
     double plateau_plastic_heat = 0;// K, mean plastic work / c_v over the plateau
     double front_peak_eta = 0;      // largest 1 - J between the plateau and the front
     double front_peak_eta_layers = 0;  // the same over cell-thick layers at rest: the largest layer mean of 1 - J
+    double row_alternation = 0;     // the plateau's particle rows' alternation in 1 - J, relative to its mean
     double rise_cells = 0;          // 10-90 % rise of sigma_yy at the front, in cells
     gimlet::health_events health;   // the silent guards that acted (solver::health)
     double shock_speed = 0;         // m/s, relative to the material ahead of it
@@ -192,12 +193,28 @@ result run(const settings& s, const M& mat = gimlet::presets::make_hmx()) {
             for (std::size_t q = k; q < k + per_layer; ++q) sum += eta[q].second;
             r.front_peak_eta_layers = std::max(r.front_peak_eta_layers, sum / double(per_layer));
         }
+        // The rows' alternation over the plateau: with rows of means eta_k = eta + a (-1)^k,
+        // eta_k - (eta_{k-1} + eta_{k+1}) / 2 = 2 a (-1)^k, so a is half the mean of its size
+        // over the inner rows (a layer holds two rows, of per_layer / 2 particles each).
+        const std::size_t per_row = per_layer / 2;
+        std::vector<double> rows;
+        std::size_t q = 0;
+        while (q < eta.size() && eta[q].first < lo) ++q;
+        for (; per_row > 0 && q + per_row <= eta.size() && eta[q + per_row - 1].first <= hi; q += per_row) {
+            double sum = 0;
+            for (std::size_t u = q; u < q + per_row; ++u) sum += eta[u].second;
+            rows.push_back(sum / double(per_row));
+        }
+        double swing = 0;
+        for (std::size_t k = 1; k + 1 < rows.size(); ++k) swing += std::abs(rows[k] - 0.5 * (rows[k - 1] + rows[k + 1]));
+        if (rows.size() > 2) r.row_alternation = 0.5 * swing / double(rows.size() - 2);
     }
     r.plateau_sigma_yy /= n;
     r.plateau_pressure /= n;
     r.plateau_eta /= n;
     r.plateau_temperature /= n;
     r.plateau_plastic_heat /= n;
+    r.row_alternation /= r.plateau_eta;
     // The front's 10-90 % rise, from the level ahead of it (the precursor's, or 0) to the plateau.
     {
         const auto prof = gimlet::diagnostics::profile(sol, 1, sigma_yy, upper);

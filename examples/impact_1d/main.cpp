@@ -71,7 +71,7 @@ int main(int argc, char** argv) try {
            "rh_pressure_Pa,rh_stress_yy_Pa,rh_shock_speed_m_s,hydro_shock_speed_m_s,two_wave,"
            "plateau_temperature_K,max_temperature_K,cell_mm,scheme,rh_temperature_K,plateau_eta,rh_eta,"
            "front_peak_eta,rise_cells,plastic_heat_K,rh_plastic_heat_K,contact,volumetric_average,max_eta,pic_fraction,"
-           "viscosity_linear,viscosity_quadratic,consistent_mass,volume_filter,front_peak_eta_layers,cfl";
+           "viscosity_linear,viscosity_quadratic,consistent_mass,volume_filter,front_peak_eta_layers,cfl,row_alternation";
     for (const char* name : gimlet::health_events::names) csv << ",events_" << name;
     csv << '\n';
     gimlet::io::exact_numbers(csv);
@@ -82,7 +82,7 @@ int main(int argc, char** argv) try {
         << r.plateau_eta << ',' << r.rh.eta << ',' << r.front_peak_eta << ',' << r.rise_cells << ','
         << r.plateau_plastic_heat << ',' << r.rh_plastic_heat << ',' << contact << ','
         << (s.volumetric_average ? "on" : "off") << ',' << 1.0 - r.min_det_f << ',' << s.pic_fraction << ',' << mv.viscosity_linear << ','
-        << mv.viscosity_quadratic << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off") << ',' << r.front_peak_eta_layers << ',' << s.cfl;
+        << mv.viscosity_quadratic << ',' << s.consistent_mass << ',' << (s.volume_filter ? "on" : "off") << ',' << r.front_peak_eta_layers << ',' << s.cfl << ',' << r.row_alternation;
     for (const auto n : r.health.count) csv << ',' << n;
     csv << '\n';
 
@@ -106,6 +106,7 @@ int main(int argc, char** argv) try {
     std::printf("  front: 10-90 %% rise %.2f cells, peak eta %.4f (%+.2f %% over the plateau); by cell-thick layers %.4f (%+.2f %%)\n",
                 r.rise_cells, r.front_peak_eta, 100 * (r.front_peak_eta / r.plateau_eta - 1), r.front_peak_eta_layers,
                 100 * (r.front_peak_eta_layers / r.plateau_eta - 1));
+    std::printf("  the plateau's particle rows alternate in eta by +-%.2f %% of its mean\n", 100 * r.row_alternation);
     std::printf("  total energy error %.2e, max temperature %.1f K\n", r.energy_error, r.max_temperature);
     std::printf("  health events: %llu\n", static_cast<unsigned long long>(r.health.total()));
     for (std::size_t k = 0; k < gimlet::health_events::kinds; ++k)
