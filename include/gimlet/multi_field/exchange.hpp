@@ -171,6 +171,30 @@ public:
         else (void)tally;
     }
 
+    /// The fastest approach, (v_a - v_b) . n_ab > 0, of two fields at a node they share whose
+    /// facing particle centres are less than `within` apart along the pair's normal
+    /// (contact::node_view::gap), from the nodes' P2G momenta (the step's v^n); 0 where none
+    /// approaches. The largest over the nodes, so the same for any thread count.
+    [[nodiscard]] real closing_speed(const grid<S>& grid, real within) const {
+        const std::size_t nodes = grid.size();
+        real fastest = 0;
+        for (const shared_node& sn : shared_) {
+            const std::size_t k = sn.count;
+            for (std::size_t a = 0; a + 1 < k; ++a) {
+                const std::size_t ea = shared_field_[sn.first_field + a] * nodes + sn.node;
+                for (std::size_t b = a + 1; b < k; ++b) {
+                    const std::size_t eb = shared_field_[sn.first_field + b] * nodes + sn.node;
+                    // gap = -(reach_ab + reach_ba), as contact::node_view::gap.
+                    const real gap = -(shared_reach_[sn.first_pair + a * k + b] + shared_reach_[sn.first_pair + b * k + a]);
+                    if (!(gap < within)) continue;
+                    const vector relative = grid.momentum[ea] / grid.mass[ea] - grid.momentum[eb] / grid.mass[eb];
+                    fastest = std::max(fastest, relative.dot(shared_pair_normal_[sn.first_pair + a * k + b]));
+                }
+            }
+        }
+        return fastest;
+    }
+
     /// What contact did to a particle with stencil `st` and entry chooser `entry` (as in
     /// find_shared_nodes) in this step (contact::particle_contact): whether a node of its
     /// stencil held an engaged pair of its field there, and its weight on those nodes.

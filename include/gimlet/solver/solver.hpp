@@ -64,17 +64,19 @@ public:
                     const Part& partition = Part{})
         : core(sc, options, partition, friction(contact)), contact_(contact) {}
 
-    /// Advance one step with the stable time step (CFL, capped by max_time_step). Returns dt.
+    /// Advance one step with the stable time step (CFL, capped by max_time_step), shortened
+    /// with multi-field contact while fields close in on each other
+    /// (solver_options::contact_closure). Returns the step taken.
     real step() {
         this->check_pending();  // a bad value set between steps is blamed on its particle, not on dt
-        return step(this->stable_time_step());
+        return advance(this->stable_time_step(), true);
     }
 
-    /// Advance one step of the given size (s). Throws numerical_error if the run breaks down.
+    /// Advance one step of the given size (s), as given. Throws numerical_error if the run
+    /// breaks down.
     real step(real dt) {
         require(std::isfinite(double(dt)) && dt > 0, "time step dt (s)", double(dt), "finite and > 0");
-        advance(dt);
-        return dt;
+        return advance(dt, false);
     }
 
     /// Advance to time `t_end` (s), calling each observer when it is due (see diagnostics/):
@@ -87,8 +89,7 @@ public:
         (observers.maybe_call(*this), ...);
         while (this->time_ < t_end) {
             this->check_pending();  // what a hook (diagnostics::between_steps) changed, before dt reads it
-            const real dt = std::min(this->stable_time_step(), t_end - this->time_);
-            advance(dt);
+            advance(std::min(this->stable_time_step(), t_end - this->time_), true);
             if (t_end - this->time_ < real(1e-12) * t_end) this->time_ = t_end;  // no sliver step at the end
             (observers.maybe_call(*this), ...);
         }
@@ -105,9 +106,10 @@ private:
         else return (void)contact, std::nullopt;
     }
 
-    // One step of the chosen scheme. Not a template, so that an explicit instantiation of the
-    // solver compiles the step; defined below the class.
-    void advance(real dt);
+    // One step of the chosen scheme, of dt, or (`chosen`: the solver chose dt) shorter where
+    // contact_closure asks; returns the step taken. Not a template, so that an explicit
+    // instantiation of the solver compiles the step; defined below the class.
+    real advance(real dt, bool chosen);
 
     // ---- the schemes ------------------------------------------------------------------------
     //
@@ -117,34 +119,37 @@ private:
     // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
     // re-mapped to the grid (docs/physics.md section 1, step 4), contact again (keeping the grid
     // update's pairs), and the stress from the re-mapped velocities.
-    void musl_step(real dt) {
+    real musl_step(real dt, bool chosen) {
         auto& t = this->timings_;
         begin_step();
-        grid_update_and_contact(dt);
+        grid_update_and_contact(dt, chosen);
         core::timed(t.grid_to_particle, [&] {
             this->grid_to_particles(dt, true);  // with the re-map's scatter
             this->remapped_velocities();
         });
         core::timed(t.contact, [&] { resolve_contact(multi_field::pass::remap, dt); });
         end_step(dt, true);
+        return dt;
     }
 
     // USL: P2G, grid update, contact, G2P, and the stress from the updated grid velocities.
-    void usl_step(real dt) {
+    real usl_step(real dt, bool chosen) {
         auto& t = this->timings_;
         begin_step();
-        grid_update_and_contact(dt);
+        grid_update_and_contact(dt, chosen);
         core::timed(t.grid_to_particle, [&] { this->grid_to_particles(dt, false); });
         end_step(dt, true);
+        return dt;
     }
 
     // USF: P2G of mass and momentum (with contact, of the current stress's forces too: they
     // decide where contact acts in this step), the stress from the start-of-step velocities,
     // then its forces, grid update, contact and G2P.
-    void usf_step(real dt) {
+    real usf_step(real dt, bool chosen) {
         auto& t = this->timings_;
         begin_step();
         core::timed(t.particle_to_grid, [&] { scatter_and_search(true); });
+        if (chosen) dt = closing_limited(dt);
         core::timed(t.grid_update, [&] { this->start_of_step_velocities(); });
         // The stress sees the same contact as the momentum update, or it would strain the
         // bodies through each other: this pass decides where contact acts in this step.
@@ -165,6 +170,7 @@ private:
         core::timed(t.contact, [&] { resolve_contact(multi_field::pass::keep, dt); });
         core::timed(t.grid_to_particle, [&] { this->grid_to_particles(dt, false); });
         end_step(dt, false);
+        return dt;
     }
 
     // ---- the schemes' shared parts ------------------------------------------------------------
@@ -196,11 +202,28 @@ private:
         if constexpr (C::multi_field) this->find_shared_nodes();
     }
 
+    // The step dt, or shorter where fields approaching each other at a shared node would close
+    // by more than solver_options::contact_closure of a cell in it: the contact decision is
+    // taken once a step, from the nodes' velocities at its start, and a pair engaged after
+    // closing most of a cell in one step takes that cell's compression in one step, which
+    // creates energy under every scheme (docs/equations.md, "Contact and the time step"). Read
+    // after the P2G, before anything uses dt.
+    real closing_limited(real dt) const {
+        if constexpr (C::multi_field) {
+            if (!(this->options_.contact_closure > 0)) return dt;
+            const real speed = this->exchange_.closing_speed(this->grid_, real(2) * this->grid_.cell());
+            if (speed > 0) dt = std::min(dt, real(this->options_.contact_closure) * this->grid_.cell() / speed);
+        }
+        return dt;
+    }
+
     // What MUSL and USL do first: P2G of mass, momentum and forces, the grid momentum update,
-    // and the contact pass that decides where contact acts in this step.
-    void grid_update_and_contact(real dt) {
+    // and the contact pass that decides where contact acts in this step (dt shortened first,
+    // where the solver chose it: closing_limited).
+    void grid_update_and_contact(real& dt, bool chosen) {
         auto& t = this->timings_;
         core::timed(t.particle_to_grid, [&] { scatter_and_search(false); });
+        if (chosen) dt = closing_limited(dt);
         core::timed(t.grid_update, [&] { this->update_grid_momentum(dt, true); });
         core::timed(t.contact, [&] { resolve_contact(multi_field::pass::decide, dt); });
     }
@@ -262,18 +285,19 @@ private:
 // leads to, out of a unit that only constructs and runs it (docs/performance.md, "Memory, the
 // largest scene, compile time").
 template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-void solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt) {
+auto solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt, bool chosen) -> real {
     // The consistent mass's entry list serves this step only, however it ends.
     struct forget_list {
         decltype(core::consistent_mass_)& stage;
         ~forget_list() { stage.unlist(); }
     } const step_list{this->consistent_mass_};
     switch (this->options_.scheme) {
-        case update_scheme::musl: musl_step(dt); break;
-        case update_scheme::usl: usl_step(dt); break;
-        case update_scheme::usf: usf_step(dt); break;
+        case update_scheme::musl: dt = musl_step(dt, chosen); break;
+        case update_scheme::usl: dt = usl_step(dt, chosen); break;
+        case update_scheme::usf: dt = usf_step(dt, chosen); break;
     }
     this->field_choice_.completed();  // reached only when the step completes
+    return dt;
 }
 
 }  // namespace gimlet
