@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+/// \file
+/// The radial factors of axisymmetric uGIMP (shape/detail/axisymmetric_gimp.hpp) against their
+/// definitions integrated by quadrature, node by node, for particle sizes from 1/8 to 1/2 of a
+/// cell and centres from the axis outwards (the clip at r = 0 included); and the sums a
+/// consistent set of radial factors keeps.
+
+#include "gimlet/shape/detail/axisymmetric_gimp.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+using gimlet::shape::detail::axisymmetric_gimp_radial;
+using gimlet::shape::detail::radial_factors;
+
+// The definitions integrated: over D = [max(0, r_p - half), r_p + half], split at the node's
+// kinks (r_i - h, r_i, r_i + h), 3-point Gauss-Legendre on each piece, exact for the piecewise
+// quadratic integrands N r, N' r and N.
+radial_factors<double> by_quadrature(double r_p, double r_i, double half, double h) {
+    const double lo = std::max(0.0, r_p - half), hi = r_p + half;
+    std::vector<double> cuts = {lo, hi};
+    for (const double c : {r_i - h, r_i, r_i + h})
+        if (c > lo && c < hi) cuts.push_back(c);
+    std::sort(cuts.begin(), cuts.end());
+    const std::array<double, 3> x = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    double nr = 0, dnr = 0, n = 0, r = 0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double a = cuts[k], b = cuts[k + 1], mid = 0.5 * (a + b), half_len = 0.5 * (b - a);
+        for (int q = 0; q < 3; ++q) {
+            const double t = mid + half_len * x[q], wt = half_len * w[q];
+            const double d = t - r_i;
+            const double hat = std::max(0.0, 1.0 - std::abs(d) / h);
+            const double slope = std::abs(d) < h ? (d > 0 ? -1.0 / h : 1.0 / h) : 0.0;
+            nr += wt * hat * t;
+            dnr += wt * slope * t;
+            n += wt * hat;
+            r += wt * t;
+        }
+    }
+    return {nr / r, dnr / r, n / r};
+}
+
+constexpr double h = 1e-3;  // m
+
+// Particle centres from near the axis outwards, for a half-width: around the clip (r_p < half),
+// every branch and well away from the axis.
+std::vector<double> centres(double half) {
+    std::vector<double> r;
+    for (int k = 1; k <= 400; ++k) r.push_back(k * 0.0317 * h);  // 0.0317 h to 12.7 h
+    for (const double f : {0.25, 0.5, 0.999, 1.0, 1.001, 1.5}) r.push_back(f * half);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("axisymmetric uGIMP: the radial factors are their definitions, node by node, the axis's clip included",
+          "[shape][axisymmetric]") {
+    double worst = 0;
+    for (const double l : {1.0 / 8, 1.0 / 6, 1.0 / 4, 1.0 / 3, 1.0 / 2}) {
+        const double half = l * h;
+        for (const double r_p : centres(half)) {
+            const int first = std::max(0, int(std::floor((r_p - half) / h)) - 1);
+            for (int k = first; k <= first + 4; ++k) {
+                const double r_i = k * h;
+                const auto f = axisymmetric_gimp_radial(r_p, r_i, half, h);
+                const auto q = by_quadrature(r_p, r_i, half, h);
+                INFO("l = " << l << ", r_p = " << r_p / h << " h, node " << k);
+                CHECK(f.weight == Approx(q.weight).margin(1e-12));
+                CHECK(f.gradient * h == Approx(q.gradient * h).margin(1e-12));
+                CHECK(f.hoop * h == Approx(q.hoop * h).margin(1e-9 * std::max(1.0, q.hoop * h)));
+                worst = std::max({worst, std::abs(f.weight - q.weight), std::abs(f.gradient - q.gradient) * h});
+            }
+        }
+    }
+    std::printf("axisymmetric uGIMP radial factors against quadrature: largest difference %.1e\n", worst);
+}
+
+// Sums over the nodes a particle reaches: Σ S = 1 and Σ G = 0 (the weights part unity), Σ G r_i
+// = 1 and Σ T r_i = 1 (L_rr and L_θθ exact for v_r = a r), and Σ S r_i = <r²>/<r>, the
+// r-weighted mean radius, r_p + half²/(3 r_p) unclipped and 2(r_p + half)/3 clipped: not r_p.
+TEST_CASE("axisymmetric uGIMP: the radial factors part unity and reproduce a radial velocity a r exactly",
+          "[shape][axisymmetric]") {
+    for (const double l : {1.0 / 8, 1.0 / 4, 1.0 / 2}) {
+        const double half = l * h;
+        for (const double r_p : centres(half)) {
+            double s = 0, g = 0, gr = 0, tr = 0, sr = 0;
+            const int first = std::max(0, int(std::floor((r_p - half) / h)) - 1);
+            for (int k = first; k <= first + 4; ++k) {
+                const double r_i = k * h;
+                const auto f = axisymmetric_gimp_radial(r_p, r_i, half, h);
+                s += f.weight;
+                g += f.gradient * h;
+                gr += f.gradient * r_i;
+                tr += f.hoop * r_i;
+                sr += f.weight * r_i;
+            }
+            INFO("l = " << l << ", r_p = " << r_p / h << " h");
+            CHECK(s == Approx(1.0).margin(1e-13));
+            CHECK(g == Approx(0.0).margin(1e-12));
+            CHECK(gr == Approx(1.0).margin(1e-12));
+            CHECK(tr == Approx(1.0).margin(1e-12));
+            const double mean_r = r_p >= half ? r_p + half * half / (3 * r_p) : 2 * (r_p + half) / 3;
+            CHECK(sr / h == Approx(mean_r / h).margin(1e-12));
+        }
+    }
+}
+
+// Far from the axis the factors tend to the planar uGIMP ones: the correction is O(l²/ρ).
+TEST_CASE("axisymmetric uGIMP: far from the axis the radial factors tend to the planar ones", "[shape][axisymmetric]") {
+    const double half = 0.25 * h;
+    for (const double s : {-1.1, -0.7, -0.2, 0.0, 0.1, 0.6, 1.2}) {
+        const double r_i = 1e4 * h, r_p = r_i + s * h;
+        const auto f = axisymmetric_gimp_radial(r_p, r_i, half, h);
+        const double a = std::abs(s), l = 0.25;
+        const double planar = a < l ? 1 - (a * a + l * l) / (2 * l) : a <= 1 - l ? 1 - a : a < 1 + l ? (1 + l - a) * (1 + l - a) / (4 * l) : 0.0;
+        CHECK(f.weight == Approx(planar).margin(1e-4));
+        CHECK(f.hoop * r_p == Approx(planar).margin(1e-12));
+    }
+}
