@@ -6,6 +6,7 @@
 /// consistent set of radial factors keeps.
 
 #include "gimlet/shape/detail/axisymmetric_gimp.hpp"
+#include "gimlet/shape/detail/gimp_kernel.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -123,4 +124,51 @@ TEST_CASE("axisymmetric uGIMP: far from the axis the radial factors tend to the 
         CHECK(f.weight == Approx(planar).margin(1e-4));
         CHECK(f.hoop * r_p == Approx(planar).margin(1e-12));
     }
+}
+
+// The velocity gradient of the axisymmetric weak form at the stencil level (x -> r, y -> z):
+// L_rr = Σ v_ir G^r_i S^z_j, L_rz = Σ v_ir S^r_i dS^z_j/dz, L_zr = Σ v_iz G^r_i S^z_j,
+// L_zz = Σ v_iz S^r_i dS^z_j/dz, L_θθ = Σ v_ir T^r_i S^z_j. With nodal velocities (a r_i, b z_j)
+// every particle reads L_rr = L_θθ = a, L_zz = b and L_rz = L_zr = 0 to round-off, including
+// those whose domain reaches the axis; with v_r = c r z, L_rz = c Σ S^r_i r_i, the r-weighted
+// mean radius (a z-gradient built on S^r with a wrong constant would miss it).
+TEST_CASE("axisymmetric uGIMP: the hoop kinematics of a linear velocity field, at the axis too", "[shape][axisymmetric]") {
+    namespace d = gimlet::shape::detail;
+    const double a = 0.37, b = -1.3, c = 2.1;
+    double worst = 0;
+    for (const double l : {1.0 / 8, 1.0 / 4, 1.0 / 2}) {
+        const double half = l * h;
+        for (const double r_p : centres(half)) {
+            const double z_p = 3.37 * h;
+            int first_r = 0, first_z = 0;
+            std::array<gimlet::shape::detail::radial_factors<double>, d::gimp_stencil> fr;
+            d::axisymmetric_gimp_radial_stencil(r_p, half, h, first_r, fr);
+            std::array<double, d::gimp_stencil> sz{}, dsz{};
+            d::gimp_weights(z_p / h, l, first_z, sz.data(), dsz.data());
+            double l_rr = 0, l_rz = 0, l_zr = 0, l_zz = 0, l_tt = 0, l_rz_c = 0, mean_r = 0;
+            for (int i = 0; i < d::gimp_stencil; ++i) {
+                const double r_i = (first_r + i) * h;
+                mean_r += fr[i].weight * r_i;
+                for (int j = 0; j < d::gimp_stencil; ++j) {
+                    const double z_j = (first_z + j) * h, dz = dsz[j] / h;
+                    const double vr = a * r_i, vz = b * z_j;
+                    l_rr += vr * fr[i].gradient * sz[j];
+                    l_rz += vr * fr[i].weight * dz;
+                    l_zr += vz * fr[i].gradient * sz[j];
+                    l_zz += vz * fr[i].weight * dz;
+                    l_tt += vr * fr[i].hoop * sz[j];
+                    l_rz_c += c * r_i * z_j * fr[i].weight * dz;
+                }
+            }
+            INFO("l = " << l << ", r_p = " << r_p / h << " h");
+            CHECK(l_rr == Approx(a).margin(1e-12));
+            CHECK(l_tt == Approx(a).margin(1e-12));
+            CHECK(l_zz == Approx(b).margin(1e-12));
+            CHECK(l_rz == Approx(0.0).margin(1e-12));
+            CHECK(l_zr == Approx(0.0).margin(1e-12));
+            CHECK(l_rz_c == Approx(c * mean_r).epsilon(1e-12));
+            worst = std::max({worst, std::abs(l_rr - a), std::abs(l_tt - a), std::abs(l_zz - b)});
+        }
+    }
+    std::printf("axisymmetric uGIMP hoop kinematics: largest error %.1e\n", worst);
 }

@@ -4,7 +4,10 @@
 /// The radial factors of axisymmetric uGIMP: the building block of a 2-D axisymmetric solver
 /// (x -> r, y -> z), where every integral over a particle's domain carries the weight r.
 
+#include "gimlet/shape/detail/gimp_kernel.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace gimlet::shape::detail {
@@ -79,6 +82,20 @@ template <class Real>
         f.hoop = q * q / (Real(4) * l * rho * h);
     }
     return f;
+}
+
+/// The radial factors of a uGIMP particle at `r_p` > 0 (m) of half-width `half` <= h/2 for its
+/// stencil along r, the axis at r = 0 and node k at r = k h: `first` is the stencil's first node,
+/// and `f[a]` node first + a's factors (axisymmetric_gimp_radial); a node beyond the axis
+/// (k < 0) has none.
+template <class Real>
+void axisymmetric_gimp_radial_stencil(Real r_p, Real half, Real h, int& first,
+                                      std::array<radial_factors<Real>, gimp_stencil>& f) noexcept {
+    (void)locate<gimp_stencil>(r_p / h, first);
+    for (int a = 0; a < gimp_stencil; ++a) {
+        const int k = first + a;
+        f[a] = k < 0 ? radial_factors<Real>{} : axisymmetric_gimp_radial(r_p, Real(k) * h, half, h);
+    }
 }
 
 }  // namespace gimlet::shape::detail
