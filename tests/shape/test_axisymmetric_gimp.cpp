@@ -172,3 +172,46 @@ TEST_CASE("axisymmetric uGIMP: the hoop kinematics of a linear velocity field, a
     }
     std::printf("axisymmetric uGIMP hoop kinematics: largest error %.1e\n", worst);
 }
+
+// The internal force of the axisymmetric weak form per radian at the stencil level:
+// f_ir = -Σ_p V_p (σ_rr G^r S^z + σ_rz S^r dS^z/dz + σ_θθ T^r S^z), f_iz = -Σ_p V_p (σ_rz G^r S^z
+// + σ_zz S^r dS^z/dz), V_p = A_p r_p. A uniform pressure over particles that tile [0, R] x [0, Z]
+// (2 x 2 a cell) leaves no force at any node inside: per node, Σ_p V_p (G^r + T^r) is the
+// integral of d(N_i r)/dr over the tiled region, which vanishes but at its outer edge, the axis's
+// node included (N r = 0 at r = 0).
+TEST_CASE("axisymmetric uGIMP: a uniform pressure leaves no force inside the material, at the axis too",
+          "[shape][axisymmetric]") {
+    namespace d = gimlet::shape::detail;
+    const int cells_r = 8, cells_z = 6;
+    const double p = 2.5e9, half = 0.25 * h;
+    std::vector<double> fr((cells_r + 3) * (cells_z + 3), 0.0), fz(fr.size(), 0.0);
+    auto at = [&](int k, int j) { return std::size_t(k * (cells_z + 3) + j + 1); };  // node j >= -1
+    for (int pr = 0; pr < 2 * cells_r; ++pr)
+        for (int pz = 0; pz < 2 * cells_z; ++pz) {
+            const double r_p = (pr + 0.5) * 2 * half, z_p = (pz + 0.5) * 2 * half;
+            const double volume = 2 * half * 2 * half * r_p;  // per radian
+            int first_r = 0, first_z = 0;
+            std::array<d::radial_factors<double>, d::gimp_stencil> f;
+            d::axisymmetric_gimp_radial_stencil(r_p, half, h, first_r, f);
+            std::array<double, d::gimp_stencil> sz{}, dsz{};
+            d::gimp_weights(z_p / h, 0.25, first_z, sz.data(), dsz.data());
+            for (int i = 0; i < d::gimp_stencil; ++i)
+                for (int j = 0; j < d::gimp_stencil; ++j) {
+                    if (first_r + i < 0) continue;
+                    // sigma = -p I: f_ir = p V (G^r S^z + T^r S^z), f_iz = p V S^r dS^z/dz.
+                    fr[at(first_r + i, first_z + j)] += p * volume * (f[i].gradient + f[i].hoop) * sz[j];
+                    fz[at(first_r + i, first_z + j)] += p * volume * f[i].weight * dsz[j] / h;
+                }
+        }
+    double inside = 0, edge = 0;
+    for (int k = 0; k <= cells_r + 1; ++k)
+        for (int j = -1; j <= cells_z + 1; ++j) {
+            const double size = std::hypot(fr[at(k, j)], fz[at(k, j)]) / (p * h * h);
+            if (k < cells_r && j > 0 && j < cells_z) inside = std::max(inside, size);
+            else edge = std::max(edge, size);
+        }
+    std::printf("axisymmetric uGIMP, uniform pressure: largest nodal force inside %.1e, at the edges %.2f (p h^2 per radian)\n",
+                inside, edge);
+    CHECK(inside < 1e-12);
+    CHECK(edge > 0.1);  // the edges do carry the pressure: the test can tell
+}
