@@ -215,3 +215,30 @@ TEST_CASE("axisymmetric uGIMP: a uniform pressure leaves no force inside the mat
     CHECK(inside < 1e-12);
     CHECK(edge > 0.1);  // the edges do carry the pressure: the test can tell
 }
+
+// Linear MPM's radial factors (the point particle): the same sums, with Σ S^r r_i = r_p exactly
+// (the domain is a point), and the l -> 0 limit of the uGIMP factors away from the nodes.
+TEST_CASE("axisymmetric linear shape: sums, a radial velocity a r exactly, and uGIMP's limit", "[shape][axisymmetric]") {
+    namespace d = gimlet::shape::detail;
+    for (int k = 1; k <= 300; ++k) {
+        const double r_p = (k * 0.0413 + 0.0011) * h;  // never on a node
+        double s = 0, gr = 0, tr = 0, sr = 0;
+        const int first = int(std::floor(r_p / h));
+        for (int n = std::max(0, first - 1); n <= first + 2; ++n) {
+            const double r_i = n * h;
+            const auto f = d::axisymmetric_linear_radial(r_p, r_i, h);
+            s += f.weight;
+            gr += f.gradient * r_i;
+            tr += f.hoop * r_i;
+            sr += f.weight * r_i;
+            const auto g = d::axisymmetric_gimp_radial(r_p, r_i, 1e-7 * h, h);
+            CHECK(f.weight == Approx(g.weight).margin(1e-6));
+            CHECK(f.gradient * h == Approx(g.gradient * h).margin(1e-6));
+        }
+        INFO("r_p = " << r_p / h << " h");
+        CHECK(s == Approx(1.0).margin(1e-14));
+        CHECK(gr == Approx(1.0).margin(1e-12));
+        CHECK(tr == Approx(1.0).margin(1e-12));
+        CHECK(sr / h == Approx(r_p / h).margin(1e-12));
+    }
+}

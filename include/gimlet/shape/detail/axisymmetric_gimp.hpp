@@ -84,6 +84,23 @@ template <class Real>
     return f;
 }
 
+/// The radial factors of the node at `r_i` for a point particle (linear MPM) at `r_p` > 0 on cells
+/// of `h`: the particle's domain shrinks to its centre, so S^r = N_i(r_p), G^r = N_i'(r_p) and
+/// T^r = N_i(r_p) / r_p (the l -> 0 limit of axisymmetric_gimp_radial; NairnMPM's and Uintah's
+/// axisymmetric linear shapes). At a node, N_i' takes the side away from the axis, as the
+/// planar linear shape does.
+template <class Real>
+[[nodiscard]] radial_factors<Real> axisymmetric_linear_radial(Real r_p, Real r_i, Real h) noexcept {
+    radial_factors<Real> f;
+    const Real s = (r_p - r_i) / h, a = std::abs(s);
+    if (a < Real(1)) {
+        f.weight = Real(1) - a;
+        f.gradient = (s < Real(0) ? Real(1) : Real(-1)) / h;
+        f.hoop = f.weight / r_p;
+    }
+    return f;
+}
+
 /// The radial factors of a uGIMP particle at `r_p` > 0 (m) of half-width `half` <= h/2 for its
 /// stencil along r, the axis at r = 0 and node k at r = k h: `first` is the stencil's first node,
 /// and `f[a]` node first + a's factors (axisymmetric_gimp_radial); a node beyond the axis
