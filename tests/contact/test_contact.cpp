@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <tuple>
@@ -304,22 +305,24 @@ TEST_CASE("contact's step: fields closing in take steps of at most contact_closu
         opt.contact_closure = closure;
         auto sol = make_solver<distance_case>(two_blocks(st, elastic()), opt);
         int shortened = 0, steps = 0;
-        double most = 0;  // the largest closure of the facing centres in a step under 1.5 cells apart (cells)
+        double most = 0;  // the largest closure of the facing centres in a step under 1.95 cells apart (cells)
         while (centre_gap(summarise(sol)) > 0.6 * st.h && steps < 1000) {
             const double before = centre_gap(summarise(sol)), stable = sol.stable_time_step();
             const double dt = sol.step();
             ++steps;
             shortened += dt < stable;
             CHECK(dt <= stable);
-            if (before < 1.5 * st.h) most = std::max(most, (before - centre_gap(summarise(sol))) / st.h);
+            if (before < 1.95 * st.h) most = std::max(most, (before - centre_gap(summarise(sol))) / st.h);
         }
-        std::printf("contact's step, closure %.2f: %d of %d steps shortened; the largest closure under 1.5 cells apart "
+        std::printf("contact's step, closure %.2f: %d of %d steps shortened; the largest closure under 1.95 cells apart "
                     "%.3f cells\n", closure, shortened, steps, most);
         if (closure > 0) {
             CHECK(shortened > 0);
             CHECK(most <= closure * (1 + 1e-9));
-            // A step given is taken as given.
+            // A step given is taken as given, where the solver's own would be shorter.
             const double stable = sol.stable_time_step(), t0 = sol.time();
+            auto own = sol;
+            CHECK(own.step() < stable);
             CHECK(sol.step(stable) == stable);
             CHECK(sol.time() == t0 + stable);
         } else {
@@ -327,6 +330,26 @@ TEST_CASE("contact's step: fields closing in take steps of at most contact_closu
             CHECK(most > 0.2);  // the free steps close by more: the bound can tell
         }
     }
+}
+
+// run_until takes the solver's own steps: to the same time, more of them with the bound.
+TEST_CASE("contact's step: run_until takes the shortened steps", "[contact][verification]") {
+    strip st;
+    st.gap = 4;
+    st.v_lower = vec(0, 30);
+    st.v_upper = vec(0, -30);
+    std::uint64_t steps[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        gimlet::solver_options<S> opt;
+        opt.threads = 1;
+        opt.contact_closure = k == 0 ? 0.1 : 0.0;
+        auto sol = make_solver<distance_case>(two_blocks(st, elastic()), opt);
+        sol.run_until(4 * st.h / 60.0);  // the facing centres close 3.4 cells: into contact
+        steps[k] = sol.steps();
+    }
+    std::printf("contact's step: run_until takes %llu steps with the bound, %llu without\n",
+                static_cast<unsigned long long>(steps[0]), static_cast<unsigned long long>(steps[1]));
+    CHECK(steps[0] > steps[1]);
 }
 
 // ---- 2. release ----------------------------------------------------------------------------

@@ -77,14 +77,11 @@ solver_type closing_slot(double dv, double height, gimlet::update_scheme scheme)
     return sol;
 }
 
-// Steps to `t` (s) as the examples' runs take them (the solver's own steps, so the contact's
-// step acts: solver_options::contact_closure), keeping the largest number of split nodes met.
+// Runs to `t` (s) as the examples do (run_until: the solver's own steps, so the contact's step
+// acts, solver_options::contact_closure), keeping the largest number of split nodes met.
 void advance_to(solver_type& sol, double t, std::size_t& split) {
-    while (sol.time() < t) {
-        if (double(sol.stable_time_step()) < t - double(sol.time())) sol.step();
-        else sol.step(t - double(sol.time()));
-        split = std::max(split, sol.partition().split_nodes());
-    }
+    auto watch = gimlet::diagnostics::every_steps(1, [&](const auto& s) { split = std::max(split, s.partition().split_nodes()); });
+    sol.run_until(t, watch);
 }
 
 // The wall layers: the slot's middle particles (initial |x| < band), binned by their initial

@@ -302,6 +302,7 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
          with_options([](auto& o) { o.volume_filter = true, o.consistent_mass_iterations = 1; }), "volume_filter",
          "thermal::isentrope_temperature"},
         {"contact's step", with_options([](auto& o) { o.contact_closure = -0.1; }), "contact_closure (cells a step)", "[0, 1]"},
+        {"contact's step", with_options([](auto& o) { o.contact_closure = 1.5; }), "contact_closure (cells a step)", "[0, 1]"},
         {"contact's step", with_options([](auto& o) { o.contact_closure = not_a_number; }), "contact_closure (cells a step)",
          "[0, 1]"},
         {"maximum time step", with_options([](auto& o) { o.max_time_step = 0.0; }), "max_time_step (s)", "> 0"},

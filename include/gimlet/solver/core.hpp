@@ -129,7 +129,9 @@ private:
 public:
     /// dt = C h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho) from the current state
     /// (docs/physics.md section 1, step 6), with c_p raised to the viscosity's signal speed where an
-    /// artificial viscosity acts (viscosity::Viscosity).
+    /// artificial viscosity acts (viscosity::Viscosity). With multi-field contact, step() and
+    /// run_until may take less while fields close in on each other
+    /// (solver_options::contact_closure); step(dt) takes dt as given.
     [[nodiscard]] real stable_time_step() const;
 
     /// Longitudinal wave speed of particle p: sqrt((K + 4G/3) / rho).

@@ -81,11 +81,12 @@ struct solver_options {
     /// each other in one step the solver chooses (solver::step(), run_until): where fields
     /// sharing a node, their facing particle centres less than two cells apart there, approach at
     /// v, the step is at most contact_closure h / v. The contact decision is taken once a step
-    /// from the velocities at its start; a pair that closes most of a cell in the step it engages
+    /// on the gaps of the positions at its start; a pair that closes most of a cell in the step it engages
     /// takes that cell's compression in one step, which creates energy in strong impacts under
     /// every scheme (docs/equations.md, "Contact and the time step"). It shortens only the few
-    /// steps of an approach faster than about contact_closure / cfl of the wave speed. A step
-    /// given to solver::step(dt) is taken as given. In [0, 1]; 0 = off.
+    /// steps of an approach faster than about contact_closure / cfl of the wave speed (a quarter
+    /// at cfl 0.4). A step given to solver::step(dt) is taken as given: a loop of its own that
+    /// wants the bound calls step(). In [0, 1]; 0 = off.
     double contact_closure = 0.1;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();

@@ -90,7 +90,9 @@ public:
         while (this->time_ < t_end) {
             this->check_pending();  // what a hook (diagnostics::between_steps) changed, before dt reads it
             advance(std::min(this->stable_time_step(), t_end - this->time_), true);
-            if (t_end - this->time_ < real(1e-12) * t_end) this->time_ = t_end;  // no sliver step at the end
+            // No sliver step from rounding at the end. (Where the contact's step shortens the last
+            // step, the rest is taken as one more step.)
+            if (t_end - this->time_ < real(1e-12) * t_end) this->time_ = t_end;
             (observers.maybe_call(*this), ...);
         }
     }
@@ -114,7 +116,8 @@ private:
     // ---- the schemes ------------------------------------------------------------------------
     //
     // Each a sequence of the core's stages, each stage timed by the scheme into the phase of
-    // step_timings it belongs to. `dt` is the step's size throughout.
+    // step_timings it belongs to. `dt` is the step's size from the contact's shortening
+    // (closing_limited, right after the P2G) on; nothing before it reads dt.
 
     // MUSL (Sulsky et al. 1995): P2G, grid update, contact, G2P, the particles' new momenta
     // re-mapped to the grid (docs/physics.md section 1, step 4), contact again (keeping the grid
@@ -204,7 +207,7 @@ private:
 
     // The step dt, or shorter where fields approaching each other at a shared node would close
     // by more than solver_options::contact_closure of a cell in it: the contact decision is
-    // taken once a step, from the nodes' velocities at its start, and a pair engaged after
+    // taken once a step, on the gaps of the positions at its start, and a pair engaged after
     // closing most of a cell in one step takes that cell's compression in one step, which
     // creates energy under every scheme (docs/equations.md, "Contact and the time step"). Read
     // after the P2G, before anything uses dt.
