@@ -321,8 +321,13 @@ TEST_CASE("contact's step: fields closing in take steps of at most contact_closu
             CHECK(most <= closure * (1 + 1e-9));
             // A step given is taken as given, where the solver's own would be shorter.
             const double stable = sol.stable_time_step(), t0 = sol.time();
-            auto own = sol;
+            auto own = sol, capped = sol;
             CHECK(own.step() < stable);
+            // step_at_most keeps the bound, and the cap when it is the shorter.
+            auto again = sol;
+            CHECK(capped.step_at_most(stable) == again.step());
+            auto tiny = sol;
+            CHECK(tiny.step_at_most(1e-3 * stable) == 1e-3 * stable);
             CHECK(sol.step(stable) == stable);
             CHECK(sol.time() == t0 + stable);
         } else {

@@ -312,6 +312,8 @@ TEST_CASE("bad solver options and run controls are refused", "[robustness][bad_i
         {"threads", with_options([](auto& o) { o.threads = -1; }), "threads", ">= 0"},
         {"sort interval", with_options([](auto& o) { o.sort_interval = -1; }), "sort_interval (steps)", ">= 0"},
         {"time step", [] { elastic_solver(one_block()).step(0.0); }, "time step dt (s)", "finite and > 0"},
+        {"largest time step", [] { elastic_solver(one_block()).step_at_most(-1.0); }, "largest time step dt_max (s)",
+         "finite and > 0"},
         {"time step", [] { elastic_solver(one_block()).step(not_a_number); }, "time step dt (s)", "finite and > 0"},
         {"end time", [] { elastic_solver(one_block()).run_until(not_a_number); }, "end time (s)", "finite"},
         {"end time",

@@ -86,7 +86,7 @@ struct solver_options {
     /// every scheme (docs/equations.md, "Contact and the time step"). It shortens only the few
     /// steps of an approach faster than about contact_closure / cfl of the wave speed (a quarter
     /// at cfl 0.4). A step given to solver::step(dt) is taken as given: a loop of its own that
-    /// wants the bound calls step(). In [0, 1]; 0 = off.
+    /// wants the bound calls step() or step_at_most(dt). In [0, 1]; 0 = off.
     double contact_closure = 0.1;
     /// Upper bound on the time step (s), > 0.
     double max_time_step = std::numeric_limits<double>::infinity();

@@ -72,6 +72,15 @@ public:
         return advance(this->stable_time_step(), true);
     }
 
+    /// Advance one step as step() does, of at most `dt_max` (s): a loop of its own that stops at
+    /// given times keeps the contact's shortening this way (step(dt) would not). Returns the
+    /// step taken.
+    real step_at_most(real dt_max) {
+        require(std::isfinite(double(dt_max)) && dt_max > 0, "largest time step dt_max (s)", double(dt_max), "finite and > 0");
+        this->check_pending();
+        return advance(std::min(this->stable_time_step(), dt_max), true);
+    }
+
     /// Advance one step of the given size (s), as given. Throws numerical_error if the run
     /// breaks down.
     real step(real dt) {
