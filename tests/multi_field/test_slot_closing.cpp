@@ -253,6 +253,27 @@ TEST_CASE("1-D Lagrangian reference with the von Mises strength and the library'
     }
 }
 
+namespace {
+
+// The slot closing at dv on a block `height` tall under USF and MUSL: the faces land in separate
+// fields; the wall layer against the reference's first cell and the plateau's sigma_yy against
+// Rankine-Hugoniot are printed, and where `asserted`, held to 1.15 times and 1 %.
+void slot_under_both_schemes(double dv, double height, bool asserted) {
+    const auto ref = reference(dv, 1e-6);
+    for (const auto scheme : {gimlet::update_scheme::usf, gimlet::update_scheme::musl}) {
+        const auto r = run_slot(dv, height, scheme);
+        const double ratio = report_layers(name(scheme), dv, r.layers, ref);
+        const double error = report_plateau(name(scheme), dv, height, r);
+        CHECK(r.split > 0);  // the faces met in separate fields
+        if (asserted) {
+            CHECK(ratio <= 1.15);
+            CHECK(std::abs(error) <= 0.01);
+        }
+    }
+}
+
+}  // namespace
+
 // Measured (0.25 mm cells, 1 us after the faces meet for the layers, 2 us for the plateau): the
 // hottest wall layer 115.1 K (USF) and 109.1 K (MUSL) above T0 against the reference's first cell
 // 130.5 K (its second and third cells 82.7 and 76.5 K): 0.882 and 0.836 times; sigma_yy +0.29 %
@@ -261,16 +282,7 @@ TEST_CASE("1-D Lagrangian reference with the von Mises strength and the library'
 TEST_CASE("slot closing in one block at 1000 m/s, USF and MUSL: the wall layer within 1.15 times the 1-D "
           "reference's first cell, the plateau's sigma_yy within 1 % of Rankine-Hugoniot",
           "[multi_field][self_contact][long]") {
-    const double dv = 1000, height = 20e-3;
-    const auto ref = reference(dv, 1e-6);
-    for (const auto scheme : {gimlet::update_scheme::usf, gimlet::update_scheme::musl}) {
-        const auto r = run_slot(dv, height, scheme);
-        const double ratio = report_layers(name(scheme), dv, r.layers, ref);
-        const double error = report_plateau(name(scheme), dv, height, r);
-        CHECK(r.split > 0);  // the faces met in separate fields
-        CHECK(ratio <= 1.15);
-        CHECK(std::abs(error) <= 0.01);
-    }
+    slot_under_both_schemes(1000, 20e-3, true);
 }
 
 // At 3000 m/s the faces land in separate fields; the wall layer and the plateau are printed, not
@@ -285,12 +297,5 @@ TEST_CASE("slot closing in one block at 1000 m/s, USF and MUSL: the wall layer w
 TEST_CASE("slot closing in one block at 3000 m/s on a 40 mm block, USF and MUSL: the faces land in separate "
           "fields, the wall layer and the plateau's sigma_yy printed against their references",
           "[multi_field][self_contact][long]") {
-    const double dv = 3000, height = 40e-3;
-    const auto ref = reference(dv, 1e-6);
-    for (const auto scheme : {gimlet::update_scheme::usf, gimlet::update_scheme::musl}) {
-        const auto r = run_slot(dv, height, scheme);
-        report_layers(name(scheme), dv, r.layers, ref);
-        report_plateau(name(scheme), dv, height, r);
-        CHECK(r.split > 0);
-    }
+    slot_under_both_schemes(3000, 40e-3, false);
 }

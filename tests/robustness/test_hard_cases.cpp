@@ -181,31 +181,57 @@ cavity_run run_cavity(const std::string& name, double velocity, double after_con
 
 // ---- uniaxial HMX impact (as examples/impact_1d, any speed) ------------------------------------
 
-/// Two HMX slabs of `length` in a periodic strip 4 cells wide hit each other at +-v along y
-/// (USF, as impact_1d: it keeps the energy of a shock). The grid leaves room for the slabs to
-/// move v t_end outwards.
+/// Two HMX blocks of `length` meeting at +-v along y from `gap` cells apart: a periodic strip 4
+/// cells wide (head-on, in uniaxial strain), blocks 5 mm wide with free sides, or such blocks each
+/// also sliding at v/2 along x (oblique); the library's viscosity unless b1 and b2 say otherwise.
+struct gap_impact {
+    enum geometry { strip, blocks, oblique } shape = strip;
+    double velocity = 1000, gap = 2.5;  // m/s each block; cells
+    gimlet::update_scheme scheme = gimlet::update_scheme::musl;
+    int consistent_mass = 0;
+    double b1 = 0.06, b2 = 1.2;  // viscosity::bulk's linear and quadratic coefficients
+    double closure = gimlet::solver_options<S>{}.contact_closure;
+};
+/// The solver of a gap_impact on cells of `cell` at `cfl`; the grid leaves room for the blocks
+/// to move v t_end outwards (and sideways).
+template <class Contact>
+gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact> make_impact(const gap_impact& g, double cell, double length,
+                                                                  double t_end, double cfl = 0.4) {
+    const double gap = g.gap * cell, v = g.velocity;
+    const double width = g.shape == gap_impact::strip ? 4 * cell : 5e-3;
+    const double margin = cell * std::ceil(v * t_end / cell + 10), side = g.shape == gap_impact::strip ? 0.0 : margin;
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector(-side, -length - gap - margin);
+    gs.upper = S::vector(width + side, length + gap + margin);
+    gs.cell = cell;
+    gs.bc = {g.shape == gap_impact::strip ? gimlet::boundary::periodic : gimlet::boundary::free, gimlet::boundary::free};
+    gimlet::scene::scene<S, hmx> sc(gs);
+    const auto m = gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(g.b2, g.b1));
+    const double vx = g.shape == gap_impact::oblique ? 0.5 * v : 0.0;
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.5 * gap), S::vector(width, length + 0.5 * gap)), m,
+                S::vector(-vx, -v), 2, "upper block");
+    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -length - 0.5 * gap), S::vector(width, -0.5 * gap)), m,
+                S::vector(vx, v), 2, "lower block");
+    auto opt = one_thread();
+    opt.scheme = g.scheme;
+    opt.cfl = cfl;
+    opt.consistent_mass_iterations = g.consistent_mass;
+    opt.contact_closure = g.closure;
+    return gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact>(sc, opt);
+}
+
+/// Two HMX slabs of `length` in a periodic strip 4 cells wide, touching at t = 0, hit each other
+/// at +-v along y (USF, as impact_1d: it keeps the energy of a shock).
 template <class Contact = gimlet::contact::single_field>
 gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact> make_strip(double velocity, double cell, double length,
                                                                  double t_end,
                                                                  gimlet::update_scheme scheme = gimlet::update_scheme::usf,
                                                                  double cfl = 0.4) {
-    const double width = 4 * cell;
-    const double margin = cell * std::ceil((velocity * t_end) / cell + 10);
-    gimlet::grid_spec<S> gs;
-    gs.lower = S::vector(0.0, -length - margin);
-    gs.upper = S::vector(width, length + margin);
-    gs.cell = cell;
-    gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
-    gimlet::scene::scene<S, hmx> sc(gs);
-    const auto m = gimlet::presets::make_hmx();
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, length)), m, S::vector(0.0, -velocity), 2,
-                "upper slab");
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -length), S::vector(width, 0.0)), m, S::vector(0.0, velocity), 2,
-                "lower slab");
-    auto opt = one_thread();
-    opt.scheme = scheme;
-    opt.cfl = cfl;
-    return gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact>(sc, opt);
+    gap_impact g;
+    g.velocity = velocity;
+    g.gap = 0;
+    g.scheme = scheme;
+    return make_impact<Contact>(g, cell, length, t_end, cfl);
 }
 
 // ---- the sparse cloud ------------------------------------------------------------------------
@@ -441,44 +467,16 @@ TEST_CASE("hard case: energy in strong 1-D impacts for every contact and scheme 
 
 // ---- energy in impacts from a gap: the contact's step -------------------------------------------
 
-// Two HMX blocks 5 mm thick (a periodic strip 4 cells wide, or 5 mm wide with free sides) meet
-// head-on at +-v along y, or obliquely (each also sliding at v/2 along x), from `gap` cells apart,
-// 0.25 mm cells, to 60 % of the shock's transit after they meet, in steps the solver chooses
+// A gap_impact of blocks 5 mm thick on 0.25 mm cells, to 60 % of the shock's transit after they
+// meet, in steps the solver chooses
 // (solver::step(): solver_options::contact_closure shortens those in which the fields close in).
 // The largest (E - E0) / E0, E = kinetic + internal, checked every step: before contact the
 // blocks fly freely and E is E0 to round-off, so any rise is energy the contact step created.
-struct gap_impact {
-    enum geometry { strip, blocks, oblique } shape = strip;
-    double velocity = 1000, gap = 2.5;  // m/s each block; cells
-    gimlet::update_scheme scheme = gimlet::update_scheme::musl;
-    int consistent_mass = 0;
-    double b1 = 0.06, b2 = 1.2;  // viscosity::bulk's linear and quadratic coefficients
-    double closure = gimlet::solver_options<S>{}.contact_closure;
-};
-
 template <class Contact>
 double gap_energy_rise(const gap_impact& g) {
     const double cell = 0.25e-3, length = 5e-3, gap = g.gap * cell, v = g.velocity;
     const double t_end = 0.5 * gap / v + 0.6 * length / (2740.0 + 2.6 * v);
-    const double width = g.shape == gap_impact::strip ? 4 * cell : 5e-3;
-    const double margin = cell * std::ceil(v * t_end / cell + 10), side = g.shape == gap_impact::strip ? 0.0 : margin;
-    gimlet::grid_spec<S> gs;
-    gs.lower = S::vector(-side, -length - gap - margin);
-    gs.upper = S::vector(width + side, length + gap + margin);
-    gs.cell = cell;
-    gs.bc = {g.shape == gap_impact::strip ? gimlet::boundary::periodic : gimlet::boundary::free, gimlet::boundary::free};
-    gimlet::scene::scene<S, hmx> sc(gs);
-    const auto m = gimlet::presets::make_hmx({}, gimlet::viscosity::bulk(g.b2, g.b1));
-    const double vx = g.shape == gap_impact::oblique ? 0.5 * v : 0.0;
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, 0.5 * gap), S::vector(width, length + 0.5 * gap)), m,
-                S::vector(-vx, -v), 2, "upper block");
-    sc.add_body(gimlet::scene::box<S>(S::vector(0.0, -length - 0.5 * gap), S::vector(width, -0.5 * gap)), m,
-                S::vector(vx, v), 2, "lower block");
-    auto opt = one_thread();
-    opt.scheme = g.scheme;
-    opt.consistent_mass_iterations = g.consistent_mass;
-    opt.contact_closure = g.closure;
-    gimlet::solver<S, gimlet::shape::ugimp, hmx, Contact> sol(sc, opt);
+    auto sol = make_impact<Contact>(g, cell, length, t_end);
     auto energy = [&] { return gimlet::diagnostics::kinetic_energy(sol) + gimlet::diagnostics::internal_energy(sol); };
     const double e0 = energy();
     double rise = -inf;

@@ -22,6 +22,15 @@ template <class Vector>
     return len > 0 ? Vector(d / len) : Vector(Vector::Zero());
 }
 
+/// The distance between the facing particle centres of fields a and b of a node along their
+/// pair normal, from the node's count x count reaches (reach[a * count + b], node_view::reach):
+/// -(reach_ab + reach_ba), the reference paper's R_i^pq (its section 2.2; docs/physics.md
+/// section 3). The contact laws see it as node_view::gap; the solver's contact step reads it too.
+template <class Real>
+[[nodiscard]] Real facing_gap(const Real* reach, std::size_t count, std::size_t a, std::size_t b) noexcept {
+    return -(reach[a * count + b] + reach[b * count + a]);
+}
+
 /// One node where several velocity fields have mass (above the solver's cut-off). A field is a
 /// body, or with a multi_field::Partition part of one (the particles of a body on one side of a
 /// closing void), so two fields of one body can touch. Arrays are indexed by the fields present
@@ -92,9 +101,7 @@ struct node_view {
     }
     /// Distance between the facing particle centres of bodies a and b along their pair normal
     /// (the reference paper's R_i^pq, its section 2.2; docs/physics.md section 3).
-    [[nodiscard]] real gap(std::size_t a, std::size_t b) const noexcept {
-        return -(reach[a * count + b] + reach[b * count + a]);
-    }
+    [[nodiscard]] real gap(std::size_t a, std::size_t b) const noexcept { return facing_gap(reach, count, a, b); }
     /// True if pair (a, b) is in kept_pairs.
     [[nodiscard]] bool kept(std::size_t a, std::size_t b) const noexcept { return kept_pairs & pair_bit(a, b); }
     /// True if pair (a, b) is in open_pairs.

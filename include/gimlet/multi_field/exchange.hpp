@@ -184,9 +184,7 @@ public:
                 const std::size_t ea = shared_field_[sn.first_field + a] * nodes + sn.node;
                 for (std::size_t b = a + 1; b < k; ++b) {
                     const std::size_t eb = shared_field_[sn.first_field + b] * nodes + sn.node;
-                    // gap = -(reach_ab + reach_ba), as contact::node_view::gap.
-                    const real gap = -(shared_reach_[sn.first_pair + a * k + b] + shared_reach_[sn.first_pair + b * k + a]);
-                    if (!(gap < within)) continue;
+                    if (!(contact::facing_gap(shared_reach_.data() + sn.first_pair, k, a, b) < within)) continue;
                     const vector relative = grid.momentum[ea] / grid.mass[ea] - grid.momentum[eb] / grid.mass[eb];
                     fastest = std::max(fastest, relative.dot(shared_pair_normal_[sn.first_pair + a * k + b]));
                 }
