@@ -203,6 +203,37 @@ struct external_acceleration {
     /// The field's name in output files and error messages.
     static constexpr const char* name = "external_acceleration";
 };
+/// The hoop stretch F_thetatheta of an axisymmetric particle (axisymmetric_space; r / R in a
+/// continuum), the deformation gradient's out-of-plane entry, integrated from the hoop rate
+/// L_thetatheta = sum v_ir T_ip (docs/equations.md, "Axisymmetric GIMP"). The volume is
+/// det(F) F_thetatheta V^0 (gimlet::jacobian).
+struct hoop_stretch {
+    /// Per particle: an S::real.
+    template <class S> using type = typename S::real;
+    /// The field's name in output files and error messages.
+    static constexpr const char* name = "hoop_stretch";
+    /// A new particle starts unstretched: 1.
+    template <class S> static type<S> initial() { return type<S>(1); }
+};
+/// Which components of the particle's velocity are driven, a loading: bit d set (1 << d) drives
+/// component d with fields::driven_velocity's; the particle moves with it along d and sets it
+/// on the nodes it weighs (stages::driven_particles; docs/guide.md, "Driving particles").
+/// 0: a free particle (the start); all bits of the space's axes: fully driven. Ask for it, with
+/// driven_velocity, through the solver's `ExtraFields`; scenes without it pay nothing.
+struct driven {
+    /// Per particle: a std::uint8_t.
+    template <class S> using type = std::uint8_t;
+    /// The field's name in output files and error messages.
+    static constexpr const char* name = "driven";
+};
+/// The velocity v_d (m/s) a driven particle (fields::driven) moves with; the user sets it, and
+/// may change it between steps (a ramp). Zero at the start.
+struct driven_velocity {
+    /// Per particle: an S::vector.
+    template <class S> using type = typename S::vector;
+    /// The field's name in output files and error messages.
+    static constexpr const char* name = "driven_velocity";
+};
 /// Equivalent plastic strain eps_p (accumulated, dimensionless); plasticity policies keep it.
 struct plastic_strain {
     /// Per particle: an S::real.
@@ -236,15 +267,21 @@ struct temperature {
 
 }  // namespace fields
 
-/// The fields every scene has. 2-D adds the out-of-plane stress of plane strain.
+/// The fields every scene has. 2-D adds the out-of-plane stress of plane strain (the hoop
+/// stress sigma_thetatheta in an axisymmetric space, which adds the hoop stretch too).
 template <Space S>
 using core_fields = std::conditional_t<
+    is_axisymmetric_v<S>,
+    field_list<fields::position, fields::velocity, fields::mass, fields::volume0,
+               fields::deformation_gradient, fields::stress, fields::stress_zz,
+               fields::specific_internal_energy, fields::body, fields::hoop_stretch>,
+    std::conditional_t<
     S::dim == 2,
     field_list<fields::position, fields::velocity, fields::mass, fields::volume0,
                fields::deformation_gradient, fields::stress, fields::stress_zz,
                fields::specific_internal_energy, fields::body>,
     field_list<fields::position, fields::velocity, fields::mass, fields::volume0,
                fields::deformation_gradient, fields::stress, fields::specific_internal_energy,
-               fields::body>>;
+               fields::body>>>;
 
 }  // namespace gimlet

@@ -129,6 +129,16 @@ public:
                     double(count) * double(nodes_[d]), "at most 2147483647 (node indices are int)");
             count *= static_cast<std::size_t>(nodes_[d]);
         }
+        if constexpr (is_axisymmetric_v<S>) {
+            // The radial weights put node 0 on the axis and drop the nodes beyond it
+            // (shape/detail/axisymmetric_gimp.hpp).
+            require(spec.lower[0] == 0, "grid lower bound r (m) of an axisymmetric grid", double(spec.lower[0]),
+                    "0 (the axis of symmetry is the grid's first column of nodes)");
+            if (periodic_[0])
+                throw invalid_parameter("boundary along r of an axisymmetric grid", "periodic",
+                                        "slip, fixed, free or wall (it applies at the outer radius; the axis "
+                                        "holds v_r = 0 itself)");
+        }
         size_ = count;
         inv_cell_ = real(1) / spec.cell;
         set_field_count(1);
@@ -289,6 +299,7 @@ public:
     /// Only the planes of nodes at and beyond each wall are visited (ghost + 1 per side), so the
     /// cost scales with the boundary, not with the grid.
     void apply_walls(std::vector<vector>& v, wall_pass pass = wall_pass::decide) {
+        if constexpr (is_axisymmetric_v<S>) hold_axis(v);
         const bool one_sided = pass != wall_pass::none;
         for (int d = 0; d < dim; ++d) {
             const boundary b = spec_.bc[d];
@@ -361,6 +372,15 @@ private:
         if (!(mu > 0)) return;
         const real slip = e.norm();
         if (slip > 0) e *= std::max(real(0), real(1) - mu * stopped / slip);
+    }
+
+    // The axis of an axisymmetric grid: v_r = 0 on the nodes at r = 0 (and the empty ones beyond,
+    // which no particle weighs), whatever the boundary along r says of the outer radius.
+    void hold_axis(std::vector<vector>& v) const {
+        for (int s = 0; s <= offset_[0]; ++s)
+            for_each_in_plane(0, s, [&](std::size_t n) {
+                for (std::size_t f = 0; f < fields_; ++f) v[f * size_ + n][0] = real(0);
+            });
     }
 
     // f(flat node index) for every node whose storage index along axis d is s.

@@ -35,6 +35,22 @@ struct space {
     using tensor3 = Eigen::Matrix<Real, 3, 3>;
 };
 
+/// The 2-D axisymmetric space: axis 0 is the radius r >= 0, axis 1 the axis of symmetry z, and
+/// the out-of-plane direction the hoop direction theta. Every particle is a ring: its mass and
+/// volume are per radian (m_p = rho A_p r_p), its weights average over its domain with the
+/// weight r, and its stress carries sigma_thetatheta in the slot plane strain keeps for sigma_zz
+/// (docs/equations.md, "Axisymmetric GIMP"). The grid must start at r = 0.
+/// \tparam Real float or double.
+template <std::floating_point Real = double>
+struct axisymmetric_space : space<2, Real> {
+    /// True: the solver adds the hoop terms (is_axisymmetric_v).
+    static constexpr bool axisymmetric = true;
+};
+
+/// Whether S is an axisymmetric space (axisymmetric_space): plane-strain and 3-D spaces are not.
+template <class S>
+inline constexpr bool is_axisymmetric_v = requires { requires S::axisymmetric; };
+
 /// A type is a space if it names a dimension and the derived types.
 template <class S>
 concept Space = requires {

@@ -51,10 +51,20 @@ template <class P>
     return -stress3(p).trace() / real(3);
 }
 
-/// Current volume det(F) V^0 of particle p.
+/// J = det F of particle p: the in-plane determinant, times the hoop stretch F_thetatheta in an
+/// axisymmetric space (plane strain has F_zz = 1).
+template <class P>
+[[nodiscard]] auto jacobian(const P& p) {
+    if constexpr (is_axisymmetric_v<typename P::space_type>)
+        return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::hoop_stretch>();
+    else
+        return p.template get<fields::deformation_gradient>().determinant();
+}
+
+/// Current volume J V^0 of particle p (per radian in an axisymmetric space).
 template <class P>
 [[nodiscard]] auto current_volume(const P& p) {
-    return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::volume0>();
+    return jacobian(p) * p.template get<fields::volume0>();
 }
 
 /// The state a policy needs between steps: J, current and reference density.
@@ -62,7 +72,7 @@ template <Material M, class P>
 [[nodiscard]] auto point_state_of(const P& p, const M& mat) {
     using real = typename P::space_type::real;
     point_state<real> st;
-    st.J = p.template get<fields::deformation_gradient>().determinant();
+    st.J = jacobian(p);
     st.density0 = real(mat.density);
     st.density = p.template get<fields::mass>() / (st.J * p.template get<fields::volume0>());
     return st;
@@ -91,24 +101,22 @@ template <Material M, class P>
     return longitudinal_wave_speed(p, mat, ignored);
 }
 
-/// Advance particle p over dt given its velocity gradient L:
-/// F <- (I - dt L/2)^-1 (I + dt L/2) F, then s from the strength law, P from the EOS, q from the
-/// viscosity (over the grid cell size `cell`), sigma = s - (P + q) I,
-/// e += dt v_mid sigma_mid : D, and the thermal update.
-/// Throws numerical_error (naming particle, position and step) if F inverts.
+namespace detail {
+// update_material_point, with the hoop rate L_thetatheta of an axisymmetric particle (ignored
+// otherwise).
 template <Material M, class P>
-void update_material_point(const M& mat, const P& p,
-                           const typename P::space_type::matrix& L,
-                           typename P::space_type::real dt, typename P::space_type::real cell,
-                           std::size_t step, double time) {
+void update_point(const M& mat, const P& p, const typename P::space_type::matrix& L,
+                  typename P::space_type::real hoop_rate, typename P::space_type::real dt,
+                  typename P::space_type::real cell, std::size_t step, double time) {
     using S = typename P::space_type;
+    constexpr bool axisymmetric = is_axisymmetric_v<S>;
     using real = typename S::real;
     using matrix = typename S::matrix;
     using tensor3 = typename S::tensor3;
     constexpr int dim = S::dim;
 
     matrix& F = p.template get<fields::deformation_gradient>();
-    const real j_old = F.determinant();
+    const real j_old = jacobian(p);
     // The old stress and its deviator first, well before the strength policy reads them: built
     // entry by entry, they reach memory in 8-byte stores, and a 16-byte load of two of them
     // right after (g++ pairs entries in the rotation) waits for the stores to drain
@@ -133,6 +141,14 @@ void update_material_point(const M& mat, const P& p,
     } else {
         F = (matrix::Identity() - half).inverse() * ((matrix::Identity() + half) * F);
     }
+    if constexpr (axisymmetric) {
+        // The same map on the hoop entry: L is block-diagonal (L_rtheta = L_ztheta = 0).
+        real& hoop = p.template get<fields::hoop_stretch>();
+        const real h = real(0.5) * dt * hoop_rate;
+        hoop = (real(1) + h) * hoop / (real(1) - h);
+    } else {
+        (void)hoop_rate;
+    }
 
     point_step<real> st;
     static_cast<point_state<real>&>(st) = point_state_of(p, mat);
@@ -154,7 +170,9 @@ void update_material_point(const M& mat, const P& p,
     st.time = time;
     if constexpr (dim == 2) {
         // Plane strain: only the in-plane entries of D and W (point_step's are zero already).
-        st.plane_strain = true;
+        // Axisymmetric: D_thetatheta is the hoop rate, and the spin is in-plane.
+        st.plane_strain = !axisymmetric;
+        if constexpr (axisymmetric) st.D(2, 2) = hoop_rate;
         const real shear = real(0.5) * (L(0, 1) + L(1, 0)), spin = real(0.5) * (L(1, 0) - L(0, 1));
         st.D(0, 0) = L(0, 0);
         st.D(1, 1) = L(1, 1);
@@ -190,7 +208,10 @@ void update_material_point(const M& mat, const P& p,
     const real v_mid = real(0.5) * (real(1) + j_old / st.J) / st.density;
     const tensor3 known = real(0.5) * minus_identity(tensor3(sigma_old + s), q);
     real power;  // known : D
-    if constexpr (dim == 2)  // D_zz = 0 in plane strain; the terms summed as the 3x3 sum pairs them
+    if constexpr (axisymmetric)
+        power = (known(0, 0) * st.D(0, 0) + known(1, 1) * st.D(1, 1)) + (known(1, 0) * st.D(1, 0) + known(0, 1) * st.D(0, 1)) +
+                known(2, 2) * st.D(2, 2);
+    else if constexpr (dim == 2)  // D_zz = 0 in plane strain; the terms summed as the 3x3 sum pairs them
         power = (known(0, 0) * st.D(0, 0) + known(1, 1) * st.D(1, 1)) + (known(1, 0) * st.D(1, 0) + known(0, 1) * st.D(0, 1));
     else
         power = known.cwiseProduct(st.D).sum();
@@ -216,6 +237,36 @@ void update_material_point(const M& mat, const P& p,
     p.template get<fields::stress>() = in_plane<dim>(sigma_new);
     if constexpr (dim == 2) p.template get<fields::stress_zz>() = sigma_new(2, 2);
 }
+}  // namespace detail
+
+/// Advance particle p over dt given its velocity gradient L:
+/// F <- (I - dt L/2)^-1 (I + dt L/2) F, then s from the strength law, P from the EOS, q from the
+/// viscosity (over the grid cell size `cell`), sigma = s - (P + q) I,
+/// e += dt v_mid sigma_mid : D, and the thermal update.
+/// Throws numerical_error (naming particle, position and step) if F inverts.
+template <Material M, class P>
+void update_material_point(const M& mat, const P& p,
+                           const typename P::space_type::matrix& L,
+                           typename P::space_type::real dt, typename P::space_type::real cell,
+                           std::size_t step, double time) {
+    static_assert(!is_axisymmetric_v<typename P::space_type>,
+                  "gimlet::update_material_point: an axisymmetric particle needs its hoop rate L_thetatheta "
+                  "(the overload that takes it after L)");
+    detail::update_point(mat, p, L, typename P::space_type::real(0), dt, cell, step, time);
+}
+
+/// update_material_point for an axisymmetric particle (axisymmetric_space): L is the (r, z)
+/// velocity gradient and `hoop_rate` L_thetatheta = sum v_ir T_ip (docs/equations.md,
+/// "Axisymmetric GIMP"), which stretches the hoop entry of F by the same midpoint map and enters
+/// D as D_thetatheta (the volumetric rate, the plastic flow and the stress power see it).
+template <Material M, class P>
+void update_material_point(const M& mat, const P& p, const typename P::space_type::matrix& L,
+                           typename P::space_type::real hoop_rate, typename P::space_type::real dt,
+                           typename P::space_type::real cell, std::size_t step, double time) {
+    static_assert(is_axisymmetric_v<typename P::space_type>,
+                  "gimlet::update_material_point: a hoop rate is for an axisymmetric particle only");
+    detail::update_point(mat, p, L, hoop_rate, dt, cell, step, time);
+}
 
 /// Whether the solver may update two particles of material M at once (update_material_points_2):
 /// plane strain in double, a strength and an EOS that are lane_safe, no thermal policy, no
@@ -223,7 +274,7 @@ void update_material_point(const M& mat, const P& p,
 /// on values).
 template <Material M, class S>
 inline constexpr bool lanes_capable = [] {
-    if constexpr (GIMLET_HAS_LANES && S::dim == 2 && std::is_same_v<typename S::real, double>)
+    if constexpr (GIMLET_HAS_LANES && S::dim == 2 && !is_axisymmetric_v<S> && std::is_same_v<typename S::real, double>)
         return lane_safe<typename M::strength_type> && lane_safe<typename M::eos_type> && !M::thermal_type::enabled &&
                !M::viscosity_type::enabled && !eos::reads_shear_energy<typename M::eos_type>;
     else

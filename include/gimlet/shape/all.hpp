@@ -3,6 +3,7 @@
 /// \file
 /// Every shape-function policy gimlet ships, with the concept they model.
 
+#include "gimlet/shape/axisymmetric.hpp"
 #include "gimlet/shape/bspline_cubic.hpp"
 #include "gimlet/shape/bspline_quadratic.hpp"
 #include "gimlet/shape/concepts.hpp"

@@ -22,6 +22,7 @@
 #include "gimlet/multi_field/exchange.hpp"
 #include "gimlet/multi_field/partition.hpp"
 #include "gimlet/scene/scene.hpp"
+#include "gimlet/shape/axisymmetric.hpp"
 #include "gimlet/shape/concepts.hpp"
 #include "gimlet/solver/health.hpp"
 #include "gimlet/solver/options.hpp"
@@ -30,6 +31,7 @@
 #include "gimlet/solver/slabs.hpp"
 #include "gimlet/solver/stages/consistent_mass.hpp"
 #include "gimlet/solver/stages/damping_transfer.hpp"
+#include "gimlet/solver/stages/driven_particles.hpp"
 #include "gimlet/solver/stages/field_choice.hpp"
 #include "gimlet/solver/stages/light_particles.hpp"
 #include "gimlet/solver/stages/volume_filter.hpp"
@@ -94,6 +96,18 @@ public:
     using store_type = particle_store<S, particle_fields>;
     /// Number of axes, 2 or 3.
     static constexpr int dim = S::dim;
+    /// True in an axisymmetric space (axisymmetric_space): rings per radian, the hoop terms.
+    static constexpr bool axisymmetric = is_axisymmetric_v<S>;
+    // The axisymmetric weights exist for the shapes the r-weighted integrals were derived for.
+    static_assert(!axisymmetric || shape::has_axisymmetric_form<Sh>,
+                  "gimlet::solver: in an axisymmetric_space the shape must be shape::ugimp or shape::linear, "
+                  "whose r-weighted radial factors exist (shape::axisymmetric_form); cpgimp's deforming domain "
+                  "and the B-splines have none yet");
+
+    /// True if some particles may be driven (fields::driven in the particles' fields).
+    static constexpr bool has_driven_particles = store_type::template has<fields::driven>;
+    static_assert(store_type::template has<fields::driven> == store_type::template has<fields::driven_velocity>,
+                  "gimlet::solver: fields::driven and fields::driven_velocity go together (stages::driven_particles)");
 
     /// True if the grid keeps a velocity field per body (MultiField).
     static constexpr bool multi_field = MultiField;
@@ -384,12 +398,15 @@ private:
     template <class After>
     std::ptrdiff_t material_pass(real dt, const std::vector<vector>& vg, bool update_materials, After&& after);
     void update_material_point(std::size_t i, real dt, const std::vector<vector>& vg);
-    [[nodiscard]] matrix velocity_gradient(std::size_t i, const std::vector<vector>& vg) const;
+    // With hoop_rate (axisymmetric space), L_thetatheta = sum v_ir T_ip there too.
+    [[nodiscard]] matrix velocity_gradient(std::size_t i, const std::vector<vector>& vg, real* hoop_rate = nullptr) const;
     // How many particles the material passes update at once: two in the lanes of one vector
     // where the material allows it (lanes_capable, update_material_pair), else one.
     static constexpr std::ptrdiff_t material_group = lanes_capable<M, S> ? 2 : 1;
     [[nodiscard]] bool update_material_pair(std::size_t i, real dt, const std::vector<vector>& vg);
     [[nodiscard]] matrix force_stress(std::size_t i) const;
+    // V_p sigma_thetatheta, the hoop stress's part of the radial force (axisymmetric space).
+    [[nodiscard]] real hoop_force_stress(std::size_t i) const;
     void sort_by_cell();
 
     // What a partition's hooks see (multi_field::partition_view).
@@ -472,6 +489,8 @@ private:
     template <std::size_t, std::size_t>
     friend class stages::field_choice;
     template <Space>
+    friend class stages::driven_particles;
+    template <Space>
     friend class stages::damping_transfer;
     // Stateless: G2P's blend of FLIP towards PIC (solver_options::pic_fraction).
     using damping_transfer = stages::damping_transfer<S>;
@@ -495,6 +514,7 @@ private:
     stages::consistent_mass<S, stencil_type::nodes> consistent_mass_;
     stages::volume_filter<S> volume_filter_;
     stages::volumetric_average<S> volumetric_average_;
+    [[no_unique_address]] std::conditional_t<has_driven_particles, stages::driven_particles<S>, detail::no_hoop> driven_;
 
     // The step's own state: the clock, the counters, the checks between steps.
     real time_ = 0;
@@ -592,6 +612,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::start_of_step_velocities()
     nodal_velocity(grid_.velocity_old);
     grid_.velocity = grid_.velocity_old;
     grid_.apply_walls(grid_.velocity);
+    if constexpr (has_driven_particles) driven_.impose(*this, grid_.velocity);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
@@ -603,6 +624,7 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 void solver_core<S, Sh, M, Fields, MultiField, Part>::remapped_velocities() {
     nodal_velocity(grid_.velocity);
     grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
+    if constexpr (has_driven_particles) driven_.impose(*this, grid_.velocity);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

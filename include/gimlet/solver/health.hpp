@@ -79,7 +79,18 @@ template <class P>
     test.template operator()<fields::plastic_strain>();
     test.template operator()<fields::plastic_work>();
     test.template operator()<fields::compression_rate>();
+    test.template operator()<fields::hoop_stretch>();
     return bad;
+}
+
+/// An axisymmetric particle's ring: off the axis (r > 0) with a positive hoop stretch; always
+/// true in other spaces. The radial weights assume r_p > 0 (shape/detail/axisymmetric_gimp.hpp).
+template <class P>
+[[nodiscard]] bool ring_valid(const P& p) {
+    if constexpr (is_axisymmetric_v<typename P::space_type>)
+        return p.template get<fields::position>()[0] > 0 && p.template get<fields::hoop_stretch>() > 0;
+    else
+        return (void)p, true;
 }
 
 /// What particle_problem tests, without building its message (it runs for every particle and step).
@@ -89,7 +100,7 @@ template <class P, Space S>
     return x.allFinite() && p.template get<fields::velocity>().allFinite() &&
            p.template get<fields::stress>().allFinite() &&
            std::isfinite(p.template get<fields::specific_internal_energy>()) && !non_finite_policy_field(p) &&
-           p.template get<fields::deformation_gradient>().determinant() > 0 && g.inside(x);
+           p.template get<fields::deformation_gradient>().determinant() > 0 && ring_valid(p) && g.inside(x);
 }
 
 /// Why a particle stops the run (non-finite values, inverted, off the grid), or empty. Mass
@@ -108,6 +119,13 @@ template <class P, Space S>
     if (const char* name = non_finite_policy_field(p)) return std::string(name) + " is not finite";
     const auto j = p.template get<fields::deformation_gradient>().determinant();
     if (!(j > 0)) return "det F = " + detail::to_text(double(j)) + " <= 0 (inverted particle)";
+    if constexpr (is_axisymmetric_v<typename P::space_type>) {
+        const double r = double(x[0]), hoop = double(p.template get<fields::hoop_stretch>());
+        if (!(hoop > 0)) return "hoop stretch = " + detail::to_text(hoop) + " <= 0 (inverted ring)";
+        if (!(r > 0))
+            return "reached the axis of symmetry: r = " + detail::to_text(r) +
+                   " <= 0 (an axisymmetric particle is a ring of radius r > 0)";
+    }
     if (!g.inside(x)) return "left the grid through a non-periodic boundary";
     return {};
 }

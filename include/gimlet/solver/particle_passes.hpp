@@ -64,10 +64,21 @@ std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part>::material_pass(re
 // volumetric rate.
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 auto solver_core<S, Sh, M, Fields, MultiField, Part>::velocity_gradient(
-    std::size_t i, const std::vector<vector>& vg) const -> matrix {
+    std::size_t i, const std::vector<vector>& vg, [[maybe_unused]] real* hoop_rate) const -> matrix {
     matrix L = matrix::Zero();
     if (lights_.is_light(i)) {
-        L = lights_.velocity_gradient(*this, i, vg);
+        L = lights_.velocity_gradient(*this, i, vg, hoop_rate);
+    } else if constexpr (axisymmetric) {
+        // L_rr = sum v_ir G_r, L_zz = sum v_iz G_z, L_thetatheta = sum v_ir T_ip
+        // (docs/equations.md, "Axisymmetric GIMP").
+        real hoop = 0;
+        auto at = entries(i);
+        stencils_[i].for_each_hoop([&](std::size_t node, real, const vector& g, real t) {
+            const vector& v = vg[at(node)];
+            L.noalias() += v * g.transpose();
+            hoop += v[0] * t;
+        });
+        if (hoop_rate) *hoop_rate = hoop;
     } else {
         auto at = entries(i);
         stencils_[i].for_each([&](std::size_t node, real, const vector& g) { L.noalias() += vg[at(node)] * g.transpose(); });
@@ -80,8 +91,15 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_point(
     std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
-    const matrix L = velocity_gradient(i, vg);
-    gimlet::update_material_point(materials_[p.template get<fields::body>()], p, L, dt, grid_.cell(), steps_, double(time_));
+    const M& mat = materials_[p.template get<fields::body>()];
+    if constexpr (axisymmetric) {
+        real hoop = 0;
+        const matrix L = velocity_gradient(i, vg, &hoop);
+        gimlet::update_material_point(mat, p, L, hoop, dt, grid_.cell(), steps_, double(time_));
+    } else {
+        const matrix L = velocity_gradient(i, vg);
+        gimlet::update_material_point(mat, p, L, dt, grid_.cell(), steps_, double(time_));
+    }
 }
 
 // Particles i and i + 1 updated at once, in the two lanes of one vector (lanes_capable
@@ -117,6 +135,14 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i
     const real v = current_volume(particles_[i]);
     if (!options_.volumetric_average) return v * sig;
     return v * volumetric_average_.averaged_stress(*this, i, sig);
+}
+
+// V_p sigma_thetatheta (axisymmetric space): the hoop stress's share of the radial force,
+// f_ir -= V_p sigma_thetatheta T_ip (docs/equations.md, "Axisymmetric GIMP").
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::hoop_force_stress(std::size_t i) const -> real {
+    if constexpr (axisymmetric) return current_volume(particles_[i]) * particles_.template column<fields::stress_zz>()[i];
+    else return (void)i, real(0);
 }
 
 // The step's last particle pass: the constitutive update from the grid velocities (MUSL,

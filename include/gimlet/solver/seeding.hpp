@@ -16,7 +16,8 @@
 
 namespace gimlet::detail {
 
-/// One particle of `body` at x, of lattice spacing delta: its volume delta^dim, mass, velocity,
+/// One particle of `body` at x, of lattice spacing delta: its volume delta^dim (per radian in an
+/// axisymmetric space: delta^2 r_p, the ring's volume over 2 pi), mass, velocity,
 /// body id, GIMP half-width delta/2 (where the shape keeps one) and the thermal policy's initial state.
 template <Space S, class M, class Store>
 void add_particle(Store& particles, const scene::body<S, M>& body, std::uint32_t id, const typename S::vector& x,
@@ -25,7 +26,9 @@ void add_particle(Store& particles, const scene::body<S, M>& body, std::uint32_t
     using vector = typename S::vector;
     const std::size_t i = particles.add();
     auto p = particles[i];
-    const real vol = std::pow(delta, real(S::dim));
+    real vol;
+    if constexpr (is_axisymmetric_v<S>) vol = delta * delta * x[0];
+    else vol = std::pow(delta, real(S::dim));
     p.template get<fields::position>() = x;
     p.template get<fields::velocity>() = body.velocity;
     p.template get<fields::volume0>() = vol;

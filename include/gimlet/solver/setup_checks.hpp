@@ -35,6 +35,18 @@ void check_setup(const scene::scene<S, M>& sc, const solver_options<S>& options,
     if (friction)
         require(*friction >= 0.0, "contact law friction() (Coulomb coefficient mu)", *friction,
                 ">= 0 (infinity: no slip)");
+    if constexpr (is_axisymmetric_v<S>) {
+        // The filters average over cells of the (r, z) plane, which are rings of different
+        // volume per radian; neither is derived for that yet.
+        if (options.volume_filter)
+            throw invalid_parameter("volume_filter", "true", "false in an axisymmetric space (not derived for rings)");
+        if (options.volumetric_average)
+            throw invalid_parameter("volumetric_average", "true",
+                                    "false in an axisymmetric space (not derived for rings)");
+        // A uniform body force with a radial component is not axisymmetric.
+        require(options.body_force[0] == 0, "body_force along r (m/s^2) in an axisymmetric space",
+                double(options.body_force[0]), "0 (a body force acts along the axis z only)");
+    }
 }
 
 /// Once the particles are seeded: the volume filter only for a material with a reference

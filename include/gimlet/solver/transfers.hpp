@@ -17,7 +17,9 @@ namespace gimlet {
 // ---- transfers ----------------------------------------------------------------------
 
 // m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p and, with Forces,
-// f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass.
+// f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass;
+// in an axisymmetric space f_ir gains -sum V_p sigma_thetatheta T_ip (docs/equations.md,
+// "Axisymmetric GIMP").
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 template <bool Forces>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
@@ -36,6 +38,22 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
             mb = mp * b;
             if constexpr (store_type::template has<fields::external_acceleration>)
                 mb += mp * particles_.template column<fields::external_acceleration>()[i];
+        }
+        if constexpr (axisymmetric) {
+            const real vh = Forces ? hoop_force_stress(i) : real(0);
+            stencils_[i].for_each_hoop([&](std::size_t node, real w, const vector& g, real t) {
+                const std::size_t e = at(node);
+                grid_.mass[e] += w * mp;
+                grid_.momentum[e] += w * mv;
+                if constexpr (Forces) {
+                    grid_.force[e] -= vs * g;
+                    grid_.force[e][0] -= vh * t;
+                    if (loaded) grid_.force[e] += w * mb;
+                } else {
+                    (void)g, (void)t, (void)vh;
+                }
+            });
+            return;
         }
         stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
             const std::size_t e = at(node);
@@ -64,6 +82,16 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
         if constexpr (store_type::template has<fields::external_acceleration>)
             mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
         auto at = entries(i);
+        if constexpr (axisymmetric) {
+            const real vh = hoop_force_stress(i);
+            stencils_[i].for_each_hoop([&](std::size_t node, real w, const vector& g, real t) {
+                const std::size_t e = at(node);
+                grid_.force[e] -= vs * g;
+                grid_.force[e][0] -= vh * t;
+                if (loaded) grid_.force[e] += w * mb;
+            });
+            return;
+        }
         stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
             const std::size_t e = at(node);
             grid_.force[e] -= vs * g;
@@ -145,6 +173,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real 
         }
     });
     grid_.apply_walls(grid_.velocity);
+    if constexpr (has_driven_particles) driven_.impose(*this, grid_.velocity);  // stages/driven_particles.hpp
 }
 
 // ---- light nodes -------------------------------------------------------------------
@@ -176,6 +205,17 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_node_change(std::siz
         mb += m[i] * particles_.template column<fields::external_acceleration>()[i];
     vector own = vector::Zero();
     auto at = entries(i);
+    if constexpr (axisymmetric) {
+        const real vh = hoop_force_stress(i);
+        stencils_[i].for_each_hoop([&](std::size_t node, real w, const vector& g, real t) {
+            const std::size_t e = at(node);
+            if (grid_.mass[e] > mass_cutoff_) return;
+            vector f = w * mb - vs * g;
+            f[0] -= vh * t;
+            own += wall_free_[e].cwiseProduct(f);
+        });
+        return dt / m[i] * own;
+    }
     stencils_[i].for_each([&](std::size_t node, real w, const vector& g) {
         const std::size_t e = at(node);
         if (!(grid_.mass[e] > mass_cutoff_)) own += wall_free_[e].cwiseProduct(w * mb - vs * g);
@@ -219,6 +259,20 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
             if (remap) scatter_momentum(i);
             return;
         }
+        // A driven particle moves with its prescribed velocity along its driven axes
+        // (stages/driven_particles.hpp); a fully driven one needs nothing else.
+        [[maybe_unused]] unsigned driven = 0;
+        [[maybe_unused]] vector x_before;
+        if constexpr (has_driven_particles) {
+            driven = particles_.template column<fields::driven>()[i];
+            if (driven == (1u << dim) - 1) {
+                v[i] = particles_.template column<fields::driven_velocity>()[i];
+                x[i] += dt * v[i];
+                if (remap) scatter_momentum(i);
+                return;
+            }
+            x_before = x[i];
+        }
         vector v_pic = vector::Zero(), dv = vector::Zero(), old = vector::Zero();  // old: S v^n, for the blend
         bool light = false;
         auto at = entries(i);  // one chooser per pass over the stencil
@@ -255,6 +309,13 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
                 if (heavy > 0) back += w / heavy * lights_.momentum(e);
             });
             v[i] -= back;
+        }
+        if constexpr (has_driven_particles) {
+            if (driven) {
+                const vector& vd = particles_.template column<fields::driven_velocity>()[i];
+                for (int d = 0; d < dim; ++d)
+                    if ((driven >> d) & 1u) v[i][d] = vd[d], x[i][d] = x_before[d] + dt * vd[d];
+            }
         }
         if (remap) scatter_momentum(i);
     };

@@ -7,12 +7,21 @@
 
 #include "gimlet/core/grid.hpp"
 #include "gimlet/core/space.hpp"
+#include "gimlet/shape/detail/axisymmetric_gimp.hpp"
 
 #include <array>
 #include <cstddef>
 #include <type_traits>
 
+namespace gimlet::shape {
+template <class Sh>
+struct axisymmetric_form;  // shape/axisymmetric.hpp
+}  // namespace gimlet::shape
+
 namespace gimlet::detail {
+
+/// Nothing: the hoop factors of a stencil outside an axisymmetric space.
+struct no_hoop {};
 
 /// \tparam S the space, \tparam W the nodes per axis of the shape function.
 template <Space S, int W>
@@ -26,10 +35,27 @@ struct stencil {
     std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
     std::array<real, dim> local;                 ///< particle position from the first node (cells)
     int first_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
+    /// Axisymmetric space: the radial hoop factor T^r of each node along r (1/m); T_ip = T^r S^z.
+    [[no_unique_address]] std::conditional_t<is_axisymmetric_v<S>, std::array<real, W>, no_hoop> hoop;
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>
     void compute_with(const grid<S>& g, const vector& x, const vector& half_width) {
+        if constexpr (is_axisymmetric_v<S>) {
+            // Along r the shape's axisymmetric form (r-weighted, the axis at r = 0 = the grid's
+            // lower bound), along z its own weights.
+            const real h = g.cell();
+            std::array<shape::detail::radial_factors<real>, W> f;
+            int first = 0;
+            shape::axisymmetric_form<Shape>::radial(x[0], half_width[0] * h, h, first, f);
+            finish_axis(g, 0, x[0] * g.inv_cell(), first);
+            for (int a = 0; a < W; ++a) w[0][a] = f[a].weight, dw[0][a] = f[a].gradient, hoop[a] = f[a].hoop;
+            const real zc = (x[1] - g.spec().lower[1]) * g.inv_cell();
+            int first_z = 0;
+            Shape::weights(zc, half_width[1], first_z, w[1].data(), dw[1].data());
+            finish_axis(g, 1, zc, first_z);
+            return;
+        }
         // A shape that computes both axes of a 2-D particle at once (ugimp, cpgimp: faster under
         // g++, the same numbers bit for bit) is asked for them together. It names itself in
         // weights_2d_shape: a shape derived from it inherits the member, not the name.
@@ -107,6 +133,19 @@ struct stencil {
         for (int d = 0; d < dim; ++d) n *= std::size_t(W);
         return n;
     }();
+
+    /// Axisymmetric space: call f(node, weight, gradient, hoop) for every node of the stencil, in
+    /// for_each's order, where hoop is T_ip = T^r S^z (1/m).
+    template <class F>
+    void for_each_hoop(F&& f) const
+        requires(is_axisymmetric_v<S>)
+    {
+        for (int b = 0; b < W; ++b)
+            for (int a = 0; a < W; ++a) {
+                const vector g(dw[0][a] * w[1][b], w[0][a] * dw[1][b]);
+                f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b], g, hoop[a] * w[1][b]);
+            }
+    }
 
     /// Call f(node, weight, gradient) for every node of the stencil.
     template <class F>

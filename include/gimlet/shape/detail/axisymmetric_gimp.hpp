@@ -97,6 +97,8 @@ template <class Real>
         f.weight = Real(1) - a;
         f.gradient = (s < Real(0) ? Real(1) : Real(-1)) / h;
         f.hoop = f.weight / r_p;
+    } else if (s == Real(-1)) {
+        f.gradient = Real(1) / h;  // the particle on the node below: the slope from the right
     }
     return f;
 }

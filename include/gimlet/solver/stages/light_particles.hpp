@@ -159,7 +159,8 @@ public:
     /// and vbar_p = sum_i S_ip k_i v_i / sum_i S_ip k_i: a node that carries little of the densest
     /// material strains the particle by little (docs/equations.md, "Light particles").
     template <class Core>
-    [[nodiscard]] matrix velocity_gradient(const Core& c, std::size_t i, const std::vector<vector>& vg) const {
+    [[nodiscard]] matrix velocity_gradient(const Core& c, std::size_t i, const std::vector<vector>& vg,
+                                           [[maybe_unused]] real* hoop_rate = nullptr) const {
         matrix L = matrix::Zero();
         real k_max = 0, k_sum = 0;
         vector mean = vector::Zero();
@@ -173,6 +174,19 @@ public:
         });
         if (k_sum > 0) mean /= k_sum;
         auto at_grad = c.entries(i);
+        if constexpr (is_axisymmetric_v<S>) {
+            // The hoop rate L_thetatheta = sum v_ir T_ip from the same blended velocities.
+            real hoop = 0;
+            c.stencils_[i].for_each_hoop([&](std::size_t node, real, const vector& g, real t) {
+                const std::size_t e = at_grad(node);
+                const real lambda = k_max > 0 ? std::min(real(1), reliability(c, e) / k_max) : real(0);
+                const vector v = lambda * vg[e] + (1 - lambda) * mean;
+                L.noalias() += v * g.transpose();
+                hoop += v[0] * t;
+            });
+            if (hoop_rate) *hoop_rate = hoop;
+            return L;
+        }
         c.stencils_[i].for_each([&](std::size_t node, real, const vector& g) {
             const std::size_t e = at_grad(node);
             const real lambda = k_max > 0 ? std::min(real(1), reliability(c, e) / k_max) : real(0);
