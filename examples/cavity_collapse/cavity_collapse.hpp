@@ -3,6 +3,8 @@
 // The reference paper's cavity-collapse runs (its section 4, docs/physics.md section 8): two HMX
 // blocks 40 mm x 50 mm, one above the other with a 4 mm gap, each with a circular cavity of
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
+// Axisymmetric (--geometry axisymmetric): each block a cylinder of radius 20 mm around the axis
+// of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free.
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
 #include "common/hmx_defaults.hpp"
@@ -23,12 +25,19 @@
 namespace cavity_collapse {
 
 using S = gimlet::space<2>;
+using A = gimlet::axisymmetric_space<double>;  // (r, z): the same vector types as S
 using material = gimlet::presets::hmx_material<>;
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
 constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's sides
 
 enum class contact_kind { single, bardenhagen, distance };
+
+// plane: the paper's blocks in plane strain, cylindrical cavities; axisymmetric: cylinders with
+// spherical pores.
+enum class geometry_kind { plane, axisymmetric };
+
+inline std::string name_of(geometry_kind g) { return g == geometry_kind::plane ? "plane" : "axisymmetric"; }
 
 inline std::string name_of(contact_kind c) {
     switch (c) {
@@ -66,6 +75,7 @@ struct settings {
     // separate velocity fields where they meet. Needs a multi-field contact (not single).
     bool self_contact = true;
     int threads = 0;
+    geometry_kind geometry = geometry_kind::plane;
 };
 
 // ---- The binary's run-time choices (--contact, --temperature) as policies
@@ -163,6 +173,12 @@ inline double interface_y() { return height + 0.5 * gap; }
 inline S::vector cavity_centre(int body) {
     return S::vector(0.5 * width, body == 0 ? 0.5 * height : 1.5 * height + gap);
 }
+// The first coordinate of the line of impact through the cavities' centres: the middle of the
+// plane blocks' width, the axis (r = 0) of the cylinders.
+inline double axis_coordinate(const settings& s) { return s.geometry == geometry_kind::plane ? 0.5 * width : 0.0; }
+// The whole body's share of a per-particle sum: 1 in the plane (per metre of depth), 2 pi for the
+// rings of the axisymmetric run (per radian).
+inline double ring_factor(const settings& s) { return s.geometry == geometry_kind::plane ? 1.0 : 2 * 3.141592653589793; }
 // Nominal time of first contact: the gap closes at 2v. The paper's snapshot times fit a clock
 // started at contact (docs/reproduction.md), so the series carries both.
 inline double contact_time(const settings& s) { return gap / (2 * s.velocity); }
@@ -198,6 +214,18 @@ inline void validate(const settings& s) {
                         "ascending, from -(gap / 2v) (the start of the run) to 1e-3");
     }
     gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
+    if (s.geometry == geometry_kind::axisymmetric) {
+        // The axisymmetric solver's scope (gimlet::axisymmetric_space): a multi-field law, and
+        // neither filter (derived for plane cells, not rings).
+        if (s.contact == contact_kind::single)
+            throw gimlet::invalid_parameter("--contact with --geometry axisymmetric", "single",
+                                            "distance or bardenhagen (the axisymmetric run is built with the "
+                                            "multi-field laws only)");
+        if (s.volume_filter || s.volumetric_average)
+            throw gimlet::invalid_parameter(s.volume_filter ? "--volume-filter with --geometry axisymmetric"
+                                                            : "--volumetric-average with --geometry axisymmetric",
+                                            "on", "off (the filters are derived for plane cells, not rings)");
+    }
 }
 
 template <class M = material>
@@ -223,6 +251,38 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
         using gimlet::scene::ball, gimlet::scene::difference;
         scene.add_body(difference(lower, ball<S>(cavity_centre(0), s.radius)), hmx, up, 2, "lower block");
         scene.add_body(difference(upper, ball<S>(cavity_centre(1), s.radius)), hmx, down, 2, "upper block");
+    } else {
+        scene.add_body(lower, hmx, up, 2, "lower block");
+        scene.add_body(upper, hmx, down, 2, "upper block");
+    }
+    return scene;
+}
+
+// The axisymmetric run (--geometry axisymmetric): each block a cylinder of radius width / 2 around
+// the axis of impact r = 0, with a spherical pore of radius R centred on the axis, its side free;
+// the grid reaches past the side by as much as past the ends.
+template <class M = material>
+gimlet::scene::scene<A, M> make_axisymmetric_scene(const settings& s) {
+    validate(s);
+    gimlet::grid_spec<A> gs;
+    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
+    gs.lower = A::vector(0.0, -margin);
+    gs.upper = A::vector(0.5 * width + margin, 2 * height + gap + margin);
+    gs.cell = s.cell;
+    gs.bc = {gimlet::boundary::free, gimlet::boundary::free};
+    gimlet::scene::scene<A, M> scene(gs);
+    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
+        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
+    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
+        hmx.thermal.use_paper(s.paper_temperature);
+    const gimlet::scene::box<A> lower(A::vector(0.0, 0.0), A::vector(0.5 * width, height));
+    const gimlet::scene::box<A> upper(A::vector(0.0, height + gap), A::vector(0.5 * width, 2 * height + gap));
+    const A::vector up(0.0, s.velocity), down(0.0, -s.velocity);
+    if (s.radius > 0) {
+        using gimlet::scene::ball, gimlet::scene::difference;
+        const A::vector c0(0.0, cavity_centre(0)[1]), c1(0.0, cavity_centre(1)[1]);
+        scene.add_body(difference(lower, ball<A>(c0, s.radius)), hmx, up, 2, "lower block");
+        scene.add_body(difference(upper, ball<A>(c1, s.radius)), hmx, down, 2, "upper block");
     } else {
         scene.add_body(lower, hmx, up, 2, "lower block");
         scene.add_body(upper, hmx, down, 2, "upper block");
@@ -305,11 +365,15 @@ public:
         r.max_temperature = hs.max_temperature;
         r.max_eta = largest_compression(sol);
         const auto hot = gimlet::diagnostics::hot_material(sol, levels_);
-        for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
+        if (s_.geometry == geometry_kind::plane)
+            for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
+        else  // the rings' per-radian sums: the whole mass (kg) and volume (m^3)
+            for (std::size_t k = 0; k < hot_levels; ++k)
+                r.hot_mass[k] = ring_factor(s_) * hot.mass[k], r.hot_area[k] = ring_factor(s_) * hot.volume[k];
         return r;
     }
 
-    // The largest 1 - det F over the particles, and 0 (NaN never taken), on the solver's
+    // The largest 1 - J (J = det F, times the hoop stretch for a ring) over the particles, and 0 (NaN never taken), on the solver's
     // threads from parallel_from particles. Each thread folds std::max over its particles, and
     // OpenMP joins the threads' maxima with the 0 the loop starts from: a maximum does not
     // depend on how the particles are shared, and 1 - det F is never -0, so the bits are the
@@ -317,28 +381,28 @@ public:
     // particle would be a serial part of each step (docs/performance.md).
     template <class Solver>
     static double largest_compression(const Solver& sol) {
-        const auto& F = sol.particles().template column<gimlet::fields::deformation_gradient>();
-        const auto n = static_cast<std::ptrdiff_t>(F.size());
+        const auto& p = sol.particles();
+        const auto n = static_cast<std::ptrdiff_t>(p.size());
         double eta = 0;
         GIMLET_OMP(parallel for reduction(max : eta) num_threads(sol.threads()) if (n >= std::ptrdiff_t(parallel_from)))
-        for (std::ptrdiff_t i = 0; i < n; ++i) eta = std::max(eta, 1.0 - double(F[std::size_t(i)].determinant()));
+        for (std::ptrdiff_t i = 0; i < n; ++i) eta = std::max(eta, 1.0 - double(gimlet::jacobian(p[std::size_t(i)])));
         return eta;
     }
 
-    // The mass-weighted mean 1 - det F of the particles whose centres lie within `radius` of
+    // The mass-weighted mean 1 - J of the particles whose centres lie within `radius` of
     // `centre`: the disc the hot spot's temperature averages (diagnostics::hot_spot). Serial, so
     // that its sum has the same bits on any thread count; it runs only on the steps that raise
     // the hot spot's peak, and costs one pass over the particles without the material update.
     template <class Solver>
     static double disc_compression(const Solver& sol, const S::vector& centre, double radius) {
-        const auto& F = sol.particles().template column<gimlet::fields::deformation_gradient>();
-        const auto& x = sol.particles().template column<gimlet::fields::position>();
-        const auto& m = sol.particles().template column<gimlet::fields::mass>();
+        const auto& p = sol.particles();
+        const auto& x = p.template column<gimlet::fields::position>();
+        const auto& m = p.template column<gimlet::fields::mass>();
         double mass = 0, eta = 0;
-        for (std::size_t i = 0; i < F.size(); ++i) {
+        for (std::size_t i = 0; i < p.size(); ++i) {
             if (!((x[i] - centre).squaredNorm() <= radius * radius)) continue;
             mass += m[i];
-            eta += m[i] * (1.0 - double(F[i].determinant()));
+            eta += m[i] * (1.0 - double(gimlet::jacobian(p[i])));
         }
         return mass > 0 ? eta / mass : -1.0;
     }
@@ -350,7 +414,8 @@ public:
         // Strip half a cell wide on each side of the axis: the two particle columns nearest it.
         const double strip = 0.5 * s_.cell;
         const double spacing = s_.cell / 2;  // 2 x 2 particles per cell
-        const S::vector axis_point(0.5 * width, interface_y());
+        const double axis = axis_coordinate(s_);
+        const S::vector axis_point(axis, interface_y());
         const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, 1, axis_point, strip);
         r.D = g.found ? 0.5 * std::max(0.0, g.gap()) : 0.0;
         const sample p = peaks(sol);
@@ -367,7 +432,7 @@ public:
             // Each cavity's axial chord, then the lateral chords of the open ones: two passes
             // over the particles, each gathering all its lines' strips (void_chords).
             const auto axial = gimlet::diagnostics::void_chords(
-                sol, {{0, 1, S::vector(0.5 * width, centre_y_[0])}, {1, 1, S::vector(0.5 * width, centre_y_[1])}}, strip,
+                sol, {{0, 1, S::vector(axis, centre_y_[0])}, {1, 1, S::vector(axis, centre_y_[1])}}, strip,
                 spacing);
             std::vector<gimlet::diagnostics::chord_line<S::vector>> across;
             for (std::uint32_t b = 0; b < 2; ++b) {
@@ -383,7 +448,7 @@ public:
                 // Five horizontal chords spread along the axial one: a jet leaves a crescent
                 // that is wide near the far wall but narrow at the chord's middle.
                 for (int k = 1; k <= 5; ++k)
-                    across.push_back({b, 0, S::vector(0.5 * width, axial[b].lower_wall + k / 6.0 * c.axial_chord)});
+                    across.push_back({b, 0, S::vector(axis, axial[b].lower_wall + k / 6.0 * c.axial_chord)});
             }
             // The widest of each open cavity's five (no pass where both are closed: no lines).
             const auto lateral = gimlet::diagnostics::void_chords(sol, across, strip, spacing);

@@ -21,7 +21,8 @@ inline constexpr const char* usage =
     "[--contact single|bardenhagen|distance] [--self-contact on|off] [--end-us T] [--sample-every-us T] "
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
     "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--volume-filter off|on] [--viscosity-linear B1] "
-    "[--viscosity-quadratic B2] [--cfl C] [--temperature isentrope|paper] [--threads N] [--quiet] "
+    "[--viscosity-quadratic B2] [--cfl C] [--temperature isentrope|paper] [--threads N] "
+    "[--geometry plane|axisymmetric] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
 // The scene's settings from the flags; each refused by name (std::invalid_argument) if out of
@@ -63,6 +64,8 @@ inline settings read_settings(example::cli& args) {
         }
     }
     s.threads = args.integer("threads", 0, 0, 256);
+    s.geometry = args.choice("geometry", "plane", {"plane", "axisymmetric"}) == "plane" ? geometry_kind::plane
+                                                                                         : geometry_kind::axisymmetric;
     return s;
 }
 

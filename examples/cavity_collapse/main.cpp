@@ -9,7 +9,7 @@
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
 //                   [--consistent-mass 4] [--volume-filter off|on] [--viscosity-linear 0.12]
 //                   [--viscosity-quadratic 2.4] [--cfl 0.4]
-//                   [--temperature isentrope|paper] [--threads 0]
+//                   [--temperature isentrope|paper] [--threads 0] [--geometry plane|axisymmetric]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -62,14 +62,21 @@ using example::keep_lines;
 using example::plotter;
 using example::shell_word;
 
-void write_header(std::ostream& os) {
+// The units of the sums over the particles: per metre of depth in the plane, the whole body's
+// axisymmetric.
+const char* mass_unit(const settings& s) { return s.geometry == geometry_kind::plane ? "kg_m" : "kg"; }
+
+void write_header(std::ostream& os, const settings& s) {
     os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,max_eta,"
           "hotspot_temperature_K,hotspot_x_mm,hotspot_y_mm,wall_relative_velocity_m_s,"
           "lower_cavity_open,lower_axial_chord_mm,lower_lateral_chord_mm,lower_closing_speed_m_s,"
           "lower_upstream_wall_speed_m_s,upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,"
           "upper_closing_speed_m_s,upper_upstream_wall_speed_m_s";
-    for (double excess : hot_excess) os << ",hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
-    for (double excess : hot_excess) os << ",hot_area_above_TEP_plus_" << int(excess) << "K_mm2";
+    for (double excess : hot_excess) os << ",hot_mass_above_TEP_plus_" << int(excess) << "K_" << mass_unit(s);
+    if (s.geometry == geometry_kind::plane)
+        for (double excess : hot_excess) os << ",hot_area_above_TEP_plus_" << int(excess) << "K_mm2";
+    else
+        for (double excess : hot_excess) os << ",hot_volume_above_TEP_plus_" << int(excess) << "K_mm3";
     os << '\n';
 }
 
@@ -81,7 +88,8 @@ void write_row(std::ostream& os, const sample& r, const settings& s) {
         os << ',' << int(c.open) << ',' << c.axial_chord * 1e3 << ',' << c.lateral_chord * 1e3 << ','
            << c.closing_speed << ',' << c.upstream_speed;
     for (double m : r.hot_mass) os << ',' << m;
-    for (double a : r.hot_area) os << ',' << a * 1e6;
+    const double to_mm = s.geometry == geometry_kind::plane ? 1e6 : 1e9;  // mm^2, or mm^3 for the rings
+    for (double a : r.hot_area) os << ',' << a * to_mm;
     os << '\n';
 }
 
@@ -135,9 +143,10 @@ double value_of(const gimlet::io::checkpoint_values& v, const std::string& key, 
 }
 
 // The settings a resumed run must share with the checkpointed one (the grid is sized for the
-// end time); a checkpoint records them and a restart compares.
+// end time); a checkpoint records them and a restart compares. The geometry only where it is
+// not the plane: a checkpoint without it is a plane run's.
 gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
-    return {{"velocity_m_s", s.velocity},        {"radius_m", s.radius},
+    gimlet::io::checkpoint_values v = {{"velocity_m_s", s.velocity},        {"radius_m", s.radius},
             {"cell_m", s.cell},                  {"contact", double(int(s.contact))},
             {"sample_every_s", s.sample_every},  {"snapshot_every_s", s.snapshot_every},
             {"hot_spot_radius_m", s.hot_spot_radius}, {"end_s", s.end},
@@ -146,6 +155,8 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"consistent_mass", double(s.consistent_mass)}, {"viscosity_linear", s.viscosity_linear},
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0},
             {"cfl", s.cfl}};
+    if (s.geometry != geometry_kind::plane) v["geometry"] = double(int(s.geometry));
+    return v;
 }
 
 // Where each output stands: the series' rows and the snapshots written, and the next time of
@@ -169,6 +180,7 @@ output_state resume_from(const std::filesystem::path& checkpoint, const settings
     v.try_emplace("viscosity_quadratic", 1.2);
     v.try_emplace("volume_filter", 0.0);
     v.try_emplace("cfl", 0.4);
+    if (s.geometry != geometry_kind::plane) v.try_emplace("geometry", double(int(geometry_kind::plane)));
     // Nor did it keep the hot spot's disc compression: a restart reports it only if the peak
     // moves after it (-1 otherwise).
     v.try_emplace("summary.hot_spot_eta", -1.0);
@@ -215,9 +227,9 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "upper_closure_us,upper_asymmetric,lower_collapse_us,upper_collapse_us,lower_aspect_at_collapse,"
           "upper_aspect_at_collapse,volumetric_average,pic_fraction,temperature,self_contact,bulk_shock_temperature_K,"
           "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl,hotspot_eta,landing_eta";
-    for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_kg_m";
+    for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_" << mass_unit(s);
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
-    su << ",status\n";
+    su << ",geometry,status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
@@ -233,7 +245,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
        << ',' << landing_eta(sum);
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
-    su << ',' << status << '\n';
+    su << ',' << name_of(s.geometry) << ',' << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + file.string());
 
@@ -270,8 +282,9 @@ void print_report(const settings& s, const Solver& sol, const summary& sum, cons
                 "planar landing at half the largest relative wall velocity: %.4f)\n",
                 sum.max_eta, sum.hot_spot_eta, landing_eta(sum));
     std::printf("  hot material, largest mass above T_EP = %.1f K plus", mon.bulk_shock_temperature());
+    const char* grams = s.geometry == geometry_kind::plane ? "g/m" : "g";
     for (std::size_t k = 0; k < hot_levels; ++k)
-        std::printf("%s %.0f K: %.3g g/m", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3);
+        std::printf("%s %.0f K: %.3g %s", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3, grams);
     std::printf("\n");
     // The silent numerical guards that acted (solver::health): counts, and the first of each.
     std::printf("  health events: %llu\n", static_cast<unsigned long long>(sol.health().total()));
@@ -286,9 +299,9 @@ void print_report(const settings& s, const Solver& sol, const summary& sum, cons
                                             : (sum.asymmetric[b] ? "collapsed asymmetrically (jet)" : "collapsed evenly"));
 }
 
-template <class Contact>
+template <class Space, class Contact>
 int run(const settings& s, const run_files& io, const Contact& contact) {
-    gimlet::solver_options<S> opt;
+    gimlet::solver_options<Space> opt;
     opt.threads = s.threads;
     opt.volumetric_average = s.volumetric_average;
     opt.pic_fraction = s.pic_fraction;
@@ -301,8 +314,12 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                                          gimlet::multi_field::by_body, gimlet::multi_field::self_contact>;
     partition part;
     if constexpr (std::is_same_v<partition, gimlet::multi_field::self_contact>) part.enabled = s.self_contact;
-    gimlet::solver<S, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
-        make_scene<run_material>(s), opt, contact, part);
+    auto scene = [&] {
+        if constexpr (gimlet::is_axisymmetric_v<Space>) return make_axisymmetric_scene<run_material>(s);
+        else return make_scene<run_material>(s);
+    };
+    gimlet::solver<Space, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
+        scene(), opt, contact, part);
     const auto& out = io.out;
     monitor mon(s);
     summary sum;
@@ -331,7 +348,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
 
     if (io.restart.empty()) {
         series.open(out / "series.csv", std::ios::trunc);
-        write_header(series);
+        write_header(series, s);
         times.open(out / "snapshots" / "times.csv", std::ios::trunc);
         times << "index,time_us,time_after_contact_us\n";
         pvd.emplace(pvd_path);
@@ -345,9 +362,10 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     gimlet::io::exact_numbers(series);
     gimlet::io::exact_numbers(times);
     if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
-    std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, cavity radius %.2f mm, cell %.3f mm, %s contact, "
+    std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, %s %.2f mm, cell %.3f mm, %s contact, "
                 "self-contact %s, %zu particles, %s %.2f us to %.2f us\n",
-                s.velocity, s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
+                s.velocity, s.geometry == geometry_kind::plane ? "cavity radius" : "axisymmetric, spherical pore radius",
+                s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
                 sol.particles().size(),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
     std::fflush(stdout);
@@ -473,8 +491,10 @@ int main(int argc, char** argv) try {
     // Every flag combination a user may give is one binary of two solvers: the single field, and
     // a multi-field law with the temperature chosen at run time (chosen_law, chosen_temperature in
     // cavity_collapse.hpp), instead of six (3 contact laws x 2 temperatures).
-    const int rc = s.contact == contact_kind::single ? run(s, io, gimlet::contact::single_field{})
-                                                     : run(s, io, chosen_law(s.contact));
+    // The axisymmetric run is one more solver, of the multi-field laws only (validate()).
+    const int rc = s.geometry == geometry_kind::axisymmetric ? run<A>(s, io, chosen_law(s.contact))
+                   : s.contact == contact_kind::single      ? run<S>(s, io, gimlet::contact::single_field{})
+                                                            : run<S>(s, io, chosen_law(s.contact));
     if (!figures) return rc;
     if (figures->finish())
         std::printf("  figures: %s (series.png, hot_material.png, map_*.png, maps_*.png); ParaView: %s\n", io.out.string().c_str(),

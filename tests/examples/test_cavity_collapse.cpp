@@ -110,9 +110,11 @@ TEST_CASE("cavity_collapse: a coarse run writes complete, finite outputs", "[exa
     REQUIRE(summary.rows[0].size() == summary.columns.size());
     for (std::size_t i = 0; i < summary.columns.size(); ++i)
         if (summary.columns[i] != "contact" && summary.columns[i] != "status" && summary.columns[i] != "volumetric_average" &&
-            summary.columns[i] != "temperature" && summary.columns[i] != "self_contact" && summary.columns[i] != "volume_filter")
+            summary.columns[i] != "temperature" && summary.columns[i] != "self_contact" && summary.columns[i] != "volume_filter" &&
+            summary.columns[i] != "geometry")
             CHECK(finite_number(summary.rows[0][i]));
     CHECK(summary.rows[0][summary.column("self_contact")] == "on");  // the default with distance contact
+    CHECK(summary.rows[0][summary.column("geometry")] == "plane");
     // The largest particle compression is reported, and it is a compression a 300 m/s impact
     // makes (Rankine-Hugoniot eta 0.084; the contact plane over-compresses a little).
     const double max_eta = std::stod(summary.rows[0][summary.column("max_eta")]);

@@ -13,6 +13,16 @@
 
 namespace gimlet {
 
+/// J = det F of particle p: the in-plane determinant, times the hoop stretch F_thetatheta in an
+/// axisymmetric space (plane strain has F_zz = 1).
+template <class P>
+[[nodiscard]] auto jacobian(const P& p) {
+    if constexpr (is_axisymmetric_v<typename P::space_type>)
+        return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::hoop_stretch>();
+    else
+        return p.template get<fields::deformation_gradient>().determinant();
+}
+
 /// The state of a material point between steps.
 template <class Real>
 struct point_state {

@@ -2,53 +2,71 @@
 #pragma once
 /// \file
 /// Conserved quantities of a particle system: mass, linear momentum, kinetic and internal
-/// energy. Sums run in particle order, so they do not depend on the thread count.
+/// energy. Sums run in particle order, so they do not depend on the thread count. In plane
+/// strain they are per metre of depth; in an axisymmetric space they are the whole body's, the
+/// rings' per-radian sums times 2 pi (the integral over theta of the weak form's r dr dz).
 
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/space.hpp"
 
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 /// Observers and measurements of a running solver: conserved quantities, hot spots, void
 /// surfaces, schedules for solver::run_until, a progress line.
 namespace gimlet::diagnostics {
 
-/// Total mass sum m_p (kg; per unit thickness in 2-D).
+namespace detail {
+// A per-radian sum of an axisymmetric solver times 2 pi: the whole body's; other sums as they are.
+template <class Solver, class T>
+[[nodiscard]] T whole_body(T sum) {
+    using store_type = std::remove_cvref_t<decltype(std::declval<const Solver&>().particles())>;
+    if constexpr (is_axisymmetric_v<typename store_type::space_type>) return 2 * 3.14159265358979323846 * sum;
+    else return sum;
+}
+}  // namespace detail
+
+/// Total mass sum m_p (kg; per unit thickness in plane strain; 2 pi sum m_p axisymmetric).
 template <class Solver>
 [[nodiscard]] double total_mass(const Solver& s) {
     double m = 0;
     for (auto mp : s.particles().template column<fields::mass>()) m += double(mp);
-    return m;
+    return detail::whole_body<Solver>(m);
 }
 
-/// Linear momentum sum m_p v_p.
+/// Linear momentum sum m_p v_p (axisymmetric: 2 pi sum m_p v_p, whose radial component is no
+/// momentum of the body, which has none along r by symmetry, and is not conserved: the hoop
+/// stress pushes the rings radially).
 template <class Solver>
 [[nodiscard]] Eigen::Matrix<double, Solver::dim, 1> linear_momentum(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& v = s.particles().template column<fields::velocity>();
     Eigen::Matrix<double, Solver::dim, 1> p = Eigen::Matrix<double, Solver::dim, 1>::Zero();
     for (std::size_t i = 0; i < m.size(); ++i) p += double(m[i]) * v[i].template cast<double>();
-    return p;
+    return detail::whole_body<Solver>(p);
 }
 
-/// Kinetic energy sum m_p |v_p|^2 / 2 (J).
+/// Kinetic energy sum m_p |v_p|^2 / 2 (J; axisymmetric: times 2 pi).
 template <class Solver>
 [[nodiscard]] double kinetic_energy(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& v = s.particles().template column<fields::velocity>();
     double e = 0;
     for (std::size_t i = 0; i < m.size(); ++i) e += 0.5 * double(m[i]) * v[i].template cast<double>().squaredNorm();
-    return e;
+    return detail::whole_body<Solver>(e);
 }
 
 /// Internal energy sum m_p e_p (J): the stress work stored in (elastic: strain energy) or
-/// dissipated by the material since the start, integrated from sigma:D (docs/physics.md section 1).
+/// dissipated by the material since the start, integrated from sigma:D (docs/physics.md section 1);
+/// axisymmetric: times 2 pi.
 template <class Solver>
 [[nodiscard]] double internal_energy(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& e = s.particles().template column<fields::specific_internal_energy>();
     double u = 0;
     for (std::size_t i = 0; i < m.size(); ++i) u += double(m[i]) * double(e[i]);
-    return u;
+    return detail::whole_body<Solver>(u);
 }
 
 /// One sample of the conserved quantities.

@@ -9,6 +9,7 @@
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/material_point.hpp"
 
 #include <algorithm>
 #include <array>
@@ -639,8 +640,9 @@ template <class Solver>
     return hot_spot(s, radius, above, work);
 }
 
-/// The material hotter than each of `temperatures` (K): its mass (kg; per metre of depth in 2-D)
-/// and current volume det(F) V0 (m^3; m^2 per metre in 2-D), summed in particle order. This is
+/// The material hotter than each of `temperatures` (K): its mass (kg; per metre of depth in plane
+/// strain, per radian in an axisymmetric space: times 2 pi for the whole ring) and current volume
+/// J V0 (m^3; m^2 per metre in plane strain, m^3 per radian axisymmetric), summed in particle order. This is
 /// how pore-collapse studies compare hot spots across resolutions: the amount of material above
 /// a temperature, not the hottest particle (docs/reproduction.md).
 struct hot_material_result {
@@ -659,7 +661,6 @@ template <class Solver>
     const auto& store = s.particles();
     const auto& m = store.template column<fields::mass>();
     const auto& v0 = store.template column<fields::volume0>();
-    const auto& F = store.template column<fields::deformation_gradient>();
     const auto& T = store.template column<fields::temperature>();
     hot_material_result r;
     r.mass.assign(temperatures.size(), 0.0);
@@ -670,11 +671,11 @@ template <class Solver>
     const std::size_t n = store.size();
     const int threads = gimlet::detail::threads_of(s);
     const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
-    std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, det(F) V0)
+    std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, J V0)
     gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i)
             if (std::any_of(temperatures.begin(), temperatures.end(), [&](double t) { return double(T[i]) > t; }))
-                hot[b].push_back({i, double(F[i].determinant()) * double(v0[i])});
+                hot[b].push_back({i, double(gimlet::jacobian(store[i])) * double(v0[i])});
     });
     for (const auto& found : hot)
         for (const auto& [i, volume] : found)

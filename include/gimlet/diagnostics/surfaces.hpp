@@ -10,6 +10,11 @@
 /// half its initial spacing V0^(1/dim) / 2 along the line. Only particles whose centres lie in a
 /// strip around the line count: |x_k - a_k| <= strip_half_width for every axis k other than the
 /// line's. The strip is not wrapped across periodic boundaries.
+///
+/// In an axisymmetric space (axisymmetric_space) a particle is a ring: its spacing is its uGIMP
+/// domain's (fields::domain_half_width), and a line along r is the diameter through the axis,
+/// which each ring in the strip crosses at r and at -r (a void around the axis then has walls at
+/// -r_w and r_w: its chord is the diameter 2 r_w).
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
@@ -22,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -80,6 +86,11 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
     // test below (in float or double), which still decides inside it: the points found are the
     // same. A line through a point that is not finite leaves its dimensions open.
     constexpr int dim = Solver::dim;
+    using store_type = std::remove_cvref_t<decltype(store)>;
+    constexpr bool axisymmetric = is_axisymmetric_v<typename store_type::space_type>;
+    static_assert(!axisymmetric || store_type::template has<fields::domain_half_width>,
+                  "gimlet::diagnostics: the surfaces of an axisymmetric solver need the particles' spacing, "
+                  "fields::domain_half_width (uGIMP keeps it)");
     constexpr double unbounded = std::numeric_limits<double>::infinity();
     struct body_box {
         std::uint32_t body;
@@ -127,8 +138,16 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
                 for (int d = 0; d < Solver::dim; ++d)
                     if (d != line.axis && std::abs(double(x[i][d] - line.point[d])) > line.half_width) inside = false;
                 if (!inside) continue;
-                const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
-                found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
+                if constexpr (axisymmetric) {
+                    // A ring's volume is per radian: its spacing is the uGIMP domain's. A line
+                    // along r is the diameter through the axis: each ring crosses it twice.
+                    const double half = double(store.template column<fields::domain_half_width>()[i][line.axis]);
+                    found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
+                    if (line.axis == 0) found[k * m + j].push_back({-double(x[i][0]), half, -double(v[i][0])});
+                } else {
+                    const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
+                    found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
+                }
             }
         }
     });

@@ -51,16 +51,6 @@ template <class P>
     return -stress3(p).trace() / real(3);
 }
 
-/// J = det F of particle p: the in-plane determinant, times the hoop stretch F_thetatheta in an
-/// axisymmetric space (plane strain has F_zz = 1).
-template <class P>
-[[nodiscard]] auto jacobian(const P& p) {
-    if constexpr (is_axisymmetric_v<typename P::space_type>)
-        return p.template get<fields::deformation_gradient>().determinant() * p.template get<fields::hoop_stretch>();
-    else
-        return p.template get<fields::deformation_gradient>().determinant();
-}
-
 /// Current volume J V^0 of particle p (per radian in an axisymmetric space).
 template <class P>
 [[nodiscard]] auto current_volume(const P& p) {
