@@ -278,4 +278,54 @@ TEST_CASE("cavity_collapse: the hot spot at the default step and at half of it",
     fs::remove_all(dir);
 }
 
+TEST_CASE("cavity_collapse: an axisymmetric coarse run writes complete, finite outputs in the whole body's units, "
+          "and resumes from a checkpoint exactly",
+          "[examples][cavity][axisymmetric]") {
+    const fs::path dir = fs::temp_directory_path() / "gimlet_test_cavity_axisymmetric";
+    fs::remove_all(dir);
+    std::string log;
+    const std::string args = coarse + " --geometry axisymmetric --velocity 300 --end-us 16";
+    REQUIRE(run(args + " --output \"" + (dir / "whole").string() + "\"", dir, log) == 0);
+    INFO(log);
+    CHECK(log.find("axisymmetric, spherical pore radius 10.00 mm") != std::string::npos);
+    const auto series = read_csv(dir / "whole" / "series.csv");
+    REQUIRE(series.rows.size() == 33);
+    for (const auto& row : series.rows) {
+        REQUIRE(row.size() == series.columns.size());
+        for (const auto& cell : row) REQUIRE(finite_number(cell));
+    }
+    CHECK(series.column("hot_mass_above_TEP_plus_100K_kg") < series.columns.size());
+    CHECK(series.column("hot_volume_above_TEP_plus_100K_mm3") < series.columns.size());
+    // The whole body's kinetic energy at the start: two cylinders of radius 20 mm and length
+    // 50 mm less a ball of radius 10 mm each, at 300 m/s, to the particle lattice's fill of the
+    // ball's surface (the rings' volumes are exact for the lattice).
+    const double pi = 3.141592653589793, rho = 1900.0;  // presets::hmx_constants::density
+    const double volume = 2 * (pi * 0.02 * 0.02 * 0.05 - 4.0 / 3 * pi * 1e-6);
+    CHECK(std::stod(series.rows.front()[series.column("kinetic_energy")]) ==
+          Approx(0.5 * rho * volume * 300 * 300).epsilon(0.01));
+    CHECK(std::stod(series.rows.front()[series.column("D_mm")]) == Approx(2.0).epsilon(1e-12));
+    // The pore's lateral chord at the start is its diameter (the chord along r mirrors the rings
+    // across the axis), to a particle spacing.
+    CHECK(std::stod(series.rows.front()[series.column("lower_lateral_chord_mm")]) == Approx(20.0).margin(1.0));
+    const auto summary = read_csv(dir / "whole" / "summary.csv");
+    REQUIRE(summary.rows.size() == 1);
+    CHECK(summary.rows[0][summary.column("geometry")] == "axisymmetric");
+    CHECK(summary.column("max_hot_mass_above_TEP_plus_100K_kg") < summary.columns.size());
+
+    // A checkpoint at 8 us and the run resumed from it write the uninterrupted run's series.
+    const fs::path ckpt = dir / "run.ckpt";
+    REQUIRE(run(args + " --output \"" + (dir / "resumed").string() + "\" --checkpoint \"" + ckpt.string() +
+                    "\" --checkpoint-at-us 8",
+                dir, log) == 0);
+    REQUIRE(run(args + " --output \"" + (dir / "resumed").string() + "\" --restart \"" + ckpt.string() + "\"", dir,
+                log) == 0);
+    CHECK(slurp(dir / "resumed" / "series.csv") == slurp(dir / "whole" / "series.csv"));
+    // A plane run refuses the axisymmetric checkpoint.
+    CHECK(run(coarse + " --velocity 300 --end-us 16 --output \"" + (dir / "plane").string() + "\" --restart \"" +
+                  ckpt.string() + "\"",
+              dir, log) != 0);
+    CHECK((log.find("geometry") != std::string::npos || log.find("hoop_stretch") != std::string::npos));
+    fs::remove_all(dir);
+}
+
 #endif

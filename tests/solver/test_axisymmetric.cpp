@@ -274,3 +274,78 @@ TEST_CASE("axisymmetric solver: an elastic cylinder under a slow axial strain co
     CHECK(worst_r < 0.005);
     CHECK(worst_z < 0.005);
 }
+
+TEST_CASE("axisymmetric solver: a free elastic cylinder breathing radially keeps its energy, its axial momentum "
+          "and its mass, summed over the whole body",
+          "[solver][axisymmetric]") {
+    // Radius R = 8 mm, height 8 mm, initial velocity v = (v0 r / R, 0) with v0 = 1e-4 c (linear
+    // to 1e-4), free everywhere: it breathes radially and bulges. Two radial transit times of
+    // 16 R / c, in steps of the solver's own choice. The energy is compared time-centred, as
+    // leapfrog conserves it (tests/solver/test_bar_vibration.cpp): KE from v^{n-1/2} . v^{n+1/2}.
+    const double radius = 0.008, height = 0.008, h = 5e-4, rho = 1000, young = 1e9, nu = 0.3;
+    const auto sc = [&] {
+        gimlet::grid_spec<A> gs;
+        gs.lower = A::vector(0.0, -3 * h);
+        gs.upper = A::vector(radius + 3 * h, height + 3 * h);
+        gs.cell = h;
+        gimlet::scene::scene<A, gimlet::elastic_material> s(gs);
+        s.add_body(gimlet::scene::box<A>(A::vector(0.0, 0.0), A::vector(radius, height)),
+                   gimlet::make_elastic_material(rho, young, nu), A::vector::Zero(), 2, "cylinder");
+        return s;
+    }();
+    gimlet::solver_options<A> opt;
+    opt.threads = 1;
+    axi_solver sol(sc, opt);
+    auto& p = sol.particles();
+    const double c = std::sqrt(young * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho), v0 = 1e-4 * c;
+    auto& v = p.column<gimlet::fields::velocity>();
+    for (std::size_t i = 0; i < p.size(); ++i) v[i] = A::vector(v0 * p.column<gimlet::fields::position>()[i][0] / radius, 0.0);
+    CHECK(gimlet::diagnostics::total_mass(sol) == Approx(rho * pi * radius * radius * height).epsilon(1e-12));
+    const double e0 = gimlet::diagnostics::kinetic_energy(sol);
+    // The whole body's kinetic energy: int rho (v0 r / R)^2 / 2 dV = pi rho v0^2 R^2 H / 4, to the
+    // midpoint rule's error over the rings.
+    CHECK(e0 == Approx(pi * rho * v0 * v0 * radius * radius * height / 4).epsilon(2e-3));
+    std::vector<A::vector> before(p.size());
+    double worst = 0, ie_old = 0;
+    std::size_t steps = 0;
+    while (sol.time() < 32 * radius / c) {
+        before.assign(v.begin(), v.end());
+        sol.step();
+        ++steps;
+        double centred = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) centred += 0.5 * p.column<gimlet::fields::mass>()[i] * before[i].dot(v[i]);
+        centred *= 2 * pi;
+        worst = std::max(worst, std::abs(centred + ie_old - e0) / e0);
+        ie_old = gimlet::diagnostics::internal_energy(sol);
+        REQUIRE(std::abs(gimlet::diagnostics::linear_momentum(sol)[1]) < 1e-12 * e0 / v0);
+    }
+    INFO(steps << " steps: largest |KE_c + IE - E0| / E0 = " << worst);
+    CHECK(worst < 5e-3);
+    CHECK(ie_old > 0.1 * e0);  // the energy did go into strain: the check can tell
+}
+
+TEST_CASE("axisymmetric solver: the surface observers see a spherical pore's diameter along r and along z",
+          "[solver][axisymmetric][diagnostics]") {
+    const double radius = 0.012, height = 0.024, h = 5e-4, pore = 0.005;
+    gimlet::grid_spec<A> gs;
+    gs.lower = A::vector(0.0, -2 * h);
+    gs.upper = A::vector(radius + 2 * h, height + 2 * h);
+    gs.cell = h;
+    gimlet::scene::scene<A, gimlet::elastic_material> sc(gs);
+    const A::vector centre(0.0, height / 2);
+    sc.add_body(gimlet::scene::difference(gimlet::scene::box<A>(A::vector(0.0, 0.0), A::vector(radius, height)),
+                                          gimlet::scene::ball<A>(centre, pore)),
+                gimlet::make_elastic_material(1000, 1e9, 0.3), A::vector::Zero(), 2, "block");
+    axi_solver sol(sc, {});
+    const double spacing = h / 2;
+    const auto along_z = gimlet::diagnostics::void_chord(sol, 0, 1, centre, spacing, spacing);
+    const auto along_r = gimlet::diagnostics::void_chord(sol, 0, 0, centre, spacing, spacing);
+    REQUIRE(along_z.open);
+    REQUIRE(along_r.open);
+    // The lattice's particles whose centres lie outside the ball: the walls lie within a spacing
+    // of the sphere.
+    CHECK(along_z.length() == Approx(2 * pore).margin(spacing));
+    CHECK(along_r.length() == Approx(2 * pore).margin(spacing));
+    CHECK(along_r.centre() == Approx(0.0).margin(1e-15));  // the mirror image across the axis
+    CHECK(along_r.lower_wall == Approx(-along_r.upper_wall).epsilon(1e-15));
+}
