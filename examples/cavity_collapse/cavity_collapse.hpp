@@ -4,7 +4,10 @@
 // blocks 40 mm x 50 mm, one above the other with a 4 mm gap, each with a circular cavity of
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
 // Axisymmetric (--geometry axisymmetric): each block a cylinder of radius 20 mm around the axis
-// of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free.
+// of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free. 3-D
+// (--geometry 3d): spherical pores in a square array of the plane run's 40 mm period (--side
+// periodic), or the axisymmetric run's cylinders (--side free), a quarter of it simulated
+// between the symmetry planes x = 0 and y = 0 (and x = y = 20 mm for the array).
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
 #include "common/hmx_defaults.hpp"
@@ -26,6 +29,7 @@ namespace cavity_collapse {
 
 using S = gimlet::space<2>;
 using A = gimlet::axisymmetric_space<double>;  // (r, z): the same vector types as S
+using S3 = gimlet::space<3>;
 using material = gimlet::presets::hmx_material<>;
 
 constexpr double width = 40e-3, height = 50e-3, gap = 4e-3;
@@ -34,10 +38,12 @@ constexpr double max_radius = 18e-3;  // leaves a 2 mm ligament to the block's s
 enum class contact_kind { single, bardenhagen, distance };
 
 // plane: the paper's blocks in plane strain, cylindrical cavities; axisymmetric: cylinders with
-// spherical pores.
-enum class geometry_kind { plane, axisymmetric };
+// spherical pores; three_d: spherical pores in 3-D, in a square array or in the cylinders.
+enum class geometry_kind { plane, axisymmetric, three_d };
 
-inline std::string name_of(geometry_kind g) { return g == geometry_kind::plane ? "plane" : "axisymmetric"; }
+inline std::string name_of(geometry_kind g) {
+    return g == geometry_kind::plane ? "plane" : g == geometry_kind::axisymmetric ? "axisymmetric" : "3d";
+}
 
 inline std::string name_of(contact_kind c) {
     switch (c) {
@@ -76,6 +82,9 @@ struct settings {
     bool self_contact = true;
     int threads = 0;
     geometry_kind geometry = geometry_kind::plane;
+    // 3-D only: the pores in a square array of period `width` (periodic), or each block a
+    // cylinder of radius width / 2 with its side free (free).
+    bool free_side = false;
 };
 
 // ---- The binary's run-time choices (--contact, --temperature) as policies
@@ -174,11 +183,14 @@ inline S::vector cavity_centre(int body) {
     return S::vector(0.5 * width, body == 0 ? 0.5 * height : 1.5 * height + gap);
 }
 // The first coordinate of the line of impact through the cavities' centres: the middle of the
-// plane blocks' width, the axis (r = 0) of the cylinders.
+// plane blocks' width, the axis (r = 0) of the cylinders, the corner x = y = 0 of the 3-D quarter.
 inline double axis_coordinate(const settings& s) { return s.geometry == geometry_kind::plane ? 0.5 * width : 0.0; }
-// The whole body's share of a per-particle sum: 1 in the plane (per metre of depth), 2 pi for the
-// rings of the axisymmetric run (per radian).
-inline double ring_factor(const settings& s) { return s.geometry == geometry_kind::plane ? 1.0 : 2 * 3.141592653589793; }
+// The whole body's share of a sum over the particles: 1 in the plane (per metre of depth), 2 pi
+// for the rings of the axisymmetric run (per radian), 4 for the 3-D quarter (the whole cylinder,
+// or the array's cell of one pore).
+inline double body_factor(const settings& s) {
+    return s.geometry == geometry_kind::plane ? 1.0 : s.geometry == geometry_kind::axisymmetric ? 2 * 3.141592653589793 : 4.0;
+}
 // Nominal time of first contact: the gap closes at 2v. The paper's snapshot times fit a clock
 // started at contact (docs/reproduction.md), so the series carries both.
 inline double contact_time(const settings& s) { return gap / (2 * s.velocity); }
@@ -214,18 +226,23 @@ inline void validate(const settings& s) {
                         "ascending, from -(gap / 2v) (the start of the run) to 1e-3");
     }
     gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
-    if (s.geometry == geometry_kind::axisymmetric) {
-        // The axisymmetric solver's scope (gimlet::axisymmetric_space): a multi-field law, and
-        // neither filter (derived for plane cells, not rings).
+    if (s.geometry != geometry_kind::plane) {
+        // The axisymmetric and 3-D runs are built with the multi-field laws only (one solver
+        // each); the filters are derived for plane cells (and refused for rings by the solver).
+        const std::string g = "--geometry " + name_of(s.geometry);
         if (s.contact == contact_kind::single)
-            throw gimlet::invalid_parameter("--contact with --geometry axisymmetric", "single",
-                                            "distance or bardenhagen (the axisymmetric run is built with the "
-                                            "multi-field laws only)");
+            throw gimlet::invalid_parameter("--contact with " + g, "single",
+                                            "distance or bardenhagen (the " + name_of(s.geometry) +
+                                                " run is built with the multi-field laws only)");
         if (s.volume_filter || s.volumetric_average)
-            throw gimlet::invalid_parameter(s.volume_filter ? "--volume-filter with --geometry axisymmetric"
-                                                            : "--volumetric-average with --geometry axisymmetric",
-                                            "on", "off (the filters are derived for plane cells, not rings)");
+            throw gimlet::invalid_parameter(
+                std::string(s.volume_filter ? "--volume-filter" : "--volumetric-average") + " with " + g, "on",
+                "off (the filters are derived for plane-strain cells)");
     }
+    if (s.free_side && s.geometry != geometry_kind::three_d)
+        throw gimlet::invalid_parameter("--side with --geometry " + name_of(s.geometry), "free",
+                                        "periodic (--side is for --geometry 3d; the axisymmetric run's side is "
+                                        "always free, the plane run's periodic)");
 }
 
 template <class M = material>
@@ -290,6 +307,57 @@ gimlet::scene::scene<A, M> make_axisymmetric_scene(const settings& s) {
     return scene;
 }
 
+// A quarter of a cylinder of radius `radius` about the z axis, x, y >= 0, z in [lo, hi]: the 3-D
+// run's block with a free side.
+struct quarter_cylinder {
+    double radius, lo, hi;
+    [[nodiscard]] bool contains(const S3::vector& x) const {
+        return x[0] >= 0 && x[1] >= 0 && x[0] * x[0] + x[1] * x[1] <= radius * radius && x[2] >= lo && x[2] <= hi;
+    }
+    [[nodiscard]] S3::vector lower() const { return S3::vector(0.0, 0.0, lo); }
+    [[nodiscard]] S3::vector upper() const { return S3::vector(radius, radius, hi); }
+};
+
+// The 3-D run (--geometry 3d): the quarter x, y >= 0 of the blocks, whose pores are centred on
+// the z axis; the planes x = 0 and y = 0 are symmetry planes (slip walls). --side periodic: each
+// block the quarter [0, width / 2]^2 of a pore's cell in a square array of period `width`, whose
+// planes x = y = width / 2 are symmetry planes too; --side free: a quarter of the axisymmetric
+// run's cylinder, the grid reaching past its side as past its ends.
+template <class M = material>
+gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
+    validate(s);
+    gimlet::grid_spec<S3> gs;
+    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
+    const double side = s.free_side ? 0.5 * width + margin : 0.5 * width;
+    gs.lower = S3::vector(0.0, 0.0, -margin);
+    gs.upper = S3::vector(side, side, 2 * height + gap + margin);
+    gs.cell = s.cell;
+    gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip, gimlet::boundary::free};
+    gimlet::scene::scene<S3, M> scene(gs);
+    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
+        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
+    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
+        hmx.thermal.use_paper(s.paper_temperature);
+    const S3::vector up(0.0, 0.0, s.velocity), down(0.0, 0.0, -s.velocity);
+    const S3::vector c0(0.0, 0.0, cavity_centre(0)[1]), c1(0.0, 0.0, cavity_centre(1)[1]);
+    auto add = [&](const auto& lower, const auto& upper) {
+        using gimlet::scene::ball, gimlet::scene::difference;
+        if (s.radius > 0) {
+            scene.add_body(difference(lower, ball<S3>(c0, s.radius)), hmx, up, 2, "lower block");
+            scene.add_body(difference(upper, ball<S3>(c1, s.radius)), hmx, down, 2, "upper block");
+        } else {
+            scene.add_body(lower, hmx, up, 2, "lower block");
+            scene.add_body(upper, hmx, down, 2, "upper block");
+        }
+    };
+    if (s.free_side)
+        add(quarter_cylinder{0.5 * width, 0.0, height}, quarter_cylinder{0.5 * width, height + gap, 2 * height + gap});
+    else
+        add(gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(0.5 * width, 0.5 * width, height)),
+            gimlet::scene::box<S3>(S3::vector(0.0, 0.0, height + gap), S3::vector(0.5 * width, 0.5 * width, 2 * height + gap)));
+    return scene;
+}
+
 // One cavity's state on its axis (the vertical line through its centre) and across it.
 struct cavity_state {
     bool open = false;
@@ -313,8 +381,9 @@ inline double bulk_shock_temperature(double velocity) {
     return example::hugoniot_temperature(example::rankine_hugoniot(gimlet::presets::make_hmx(), velocity));
 }
 
-// One row of series.csv.
-struct sample {
+// One row of series.csv, for a solver whose positions are Vector.
+template <class Vector>
+struct sample_of {
     double time = 0;
     double D = 0;  // m: half the gap between the impact surfaces on the cavities' axis (>= 0)
     double kinetic = 0, internal = 0;  // J per metre of depth
@@ -322,7 +391,7 @@ struct sample {
     double max_eta = 0;  // the largest particle compression 1 - det F
     // The hot spot's disc: its centre, and its mass-weighted mean compression 1 - det F (-1
     // where the search named no disc).
-    S::vector hot_spot_centre = S::vector::Zero();
+    Vector hot_spot_centre = Vector::Zero();
     double hot_spot_eta = -1;
     // The material hotter than the bulk shock temperature T_EP(v) by each of hot_excess (K):
     // mass (kg per metre of depth) and area (m^2).
@@ -332,16 +401,22 @@ struct sample {
         return std::max(cavity[0].closing_speed, cavity[1].closing_speed);
     }
 };
+using sample = sample_of<S::vector>;
 
 // The particle count from which the example's own passes over the particles (the largest
 // compression, the maps' text) run on the solver's threads: below it a team costs more than the
 // pass, as for the library's observers and loops.
 inline constexpr std::size_t parallel_from = 4096;
 
-// Measures one sample; keeps the cavities' last centres so it can follow them.
-class monitor {
+// Measures one sample; keeps the cavities' last centres so it can follow them. Vector: the
+// solver's positions (2-D for the plane and axisymmetric runs, 3-D).
+template <class Vector>
+class monitor_of {
 public:
-    explicit monitor(const settings& s) : s_(s), bulk_(cavity_collapse::bulk_shock_temperature(s.velocity)) {
+    using sample = sample_of<Vector>;
+    static constexpr int dim = int(Vector::RowsAtCompileTime);
+
+    explicit monitor_of(const settings& s) : s_(s), bulk_(cavity_collapse::bulk_shock_temperature(s.velocity)) {
         for (int b = 0; b < 2; ++b) centre_y_[b] = cavity_centre(b)[1];
         for (std::size_t k = 0; k < hot_levels; ++k) levels_.push_back(bulk_ + hot_excess[k]);
     }
@@ -367,9 +442,9 @@ public:
         const auto hot = gimlet::diagnostics::hot_material(sol, levels_);
         if (s_.geometry == geometry_kind::plane)
             for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
-        else  // the rings' per-radian sums: the whole mass (kg) and volume (m^3)
+        else  // the rings' per-radian sums or the quarter's: the whole mass (kg) and volume (m^3)
             for (std::size_t k = 0; k < hot_levels; ++k)
-                r.hot_mass[k] = ring_factor(s_) * hot.mass[k], r.hot_area[k] = ring_factor(s_) * hot.volume[k];
+                r.hot_mass[k] = body_factor(s_) * hot.mass[k], r.hot_area[k] = body_factor(s_) * hot.volume[k];
         return r;
     }
 
@@ -394,7 +469,7 @@ public:
     // that its sum has the same bits on any thread count; it runs only on the steps that raise
     // the hot spot's peak, and costs one pass over the particles without the material update.
     template <class Solver>
-    static double disc_compression(const Solver& sol, const S::vector& centre, double radius) {
+    static double disc_compression(const Solver& sol, const Vector& centre, double radius) {
         const auto& p = sol.particles();
         const auto& x = p.template column<gimlet::fields::position>();
         const auto& m = p.template column<gimlet::fields::mass>();
@@ -414,9 +489,7 @@ public:
         // Strip half a cell wide on each side of the axis: the two particle columns nearest it.
         const double strip = 0.5 * s_.cell;
         const double spacing = s_.cell / 2;  // 2 x 2 particles per cell
-        const double axis = axis_coordinate(s_);
-        const S::vector axis_point(axis, interface_y());
-        const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, 1, axis_point, strip);
+        const auto g = gimlet::diagnostics::surface_gap(sol, 0, 1, dim - 1, on_axis(interface_y()), strip);
         r.D = g.found ? 0.5 * std::max(0.0, g.gap()) : 0.0;
         const sample p = peaks(sol);
         r.hot_spot = p.hot_spot;
@@ -428,13 +501,13 @@ public:
         r.hot_area = p.hot_area;
         r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
         r.internal = gimlet::diagnostics::internal_energy(sol);
+        if constexpr (dim == 3) r.kinetic *= body_factor(s_), r.internal *= body_factor(s_);  // the quarter's, times 4
         if (s_.radius > 0) {
             // Each cavity's axial chord, then the lateral chords of the open ones: two passes
             // over the particles, each gathering all its lines' strips (void_chords).
             const auto axial = gimlet::diagnostics::void_chords(
-                sol, {{0, 1, S::vector(axis, centre_y_[0])}, {1, 1, S::vector(axis, centre_y_[1])}}, strip,
-                spacing);
-            std::vector<gimlet::diagnostics::chord_line<S::vector>> across;
+                sol, {{0, dim - 1, on_axis(centre_y_[0])}, {1, dim - 1, on_axis(centre_y_[1])}}, strip, spacing);
+            std::vector<gimlet::diagnostics::chord_line<Vector>> across;
             for (std::uint32_t b = 0; b < 2; ++b) {
                 auto& c = r.cavity[b];
                 c.open = axial[b].open;
@@ -448,16 +521,52 @@ public:
                 // Five horizontal chords spread along the axial one: a jet leaves a crescent
                 // that is wide near the far wall but narrow at the chord's middle.
                 for (int k = 1; k <= 5; ++k)
-                    across.push_back({b, 0, S::vector(axis, axial[b].lower_wall + k / 6.0 * c.axial_chord)});
+                    across.push_back({b, 0, on_axis(axial[b].lower_wall + k / 6.0 * c.axial_chord)});
             }
             // The widest of each open cavity's five (no pass where both are closed: no lines).
-            const auto lateral = gimlet::diagnostics::void_chords(sol, across, strip, spacing);
+            const auto lateral = lateral_chords(sol, across, strip, spacing);
             for (std::size_t j = 0; j < lateral.size(); ++j) {
                 auto& c = r.cavity[across[j].body];
-                c.lateral_chord = std::max(c.lateral_chord, lateral[j].length());
+                c.lateral_chord = std::max(c.lateral_chord, lateral[j]);
             }
         }
         return r;
+    }
+
+    // The point of the line of impact at `along` on the last axis.
+    [[nodiscard]] Vector on_axis(double along) const {
+        Vector x = Vector::Zero();
+        if constexpr (dim == 2) x[0] = axis_coordinate(s_);
+        x[dim - 1] = along;
+        return x;
+    }
+
+    // The length of the void along each line (0 where none is wider than min_width). In the plane
+    // and axisymmetric runs the library's chords (the axisymmetric strip is mirrored across the
+    // axis by the library). The 3-D quarter's line along x starts on the symmetry plane x = 0, its
+    // mirror: the void spans -e to e, e the smallest domain edge x - l of the strip's particles.
+    template <class Solver>
+    std::vector<double> lateral_chords(const Solver& sol, const std::vector<gimlet::diagnostics::chord_line<Vector>>& lines,
+                                       double strip, double min_width) const {
+        std::vector<double> out(lines.size(), 0.0);
+        if constexpr (dim == 2) {
+            const auto found = gimlet::diagnostics::void_chords(sol, lines, strip, min_width);
+            for (std::size_t j = 0; j < lines.size(); ++j) out[j] = found[j].length();
+        } else {
+            const auto& p = sol.particles();
+            const auto& x = p.template column<gimlet::fields::position>();
+            const auto& half = p.template column<gimlet::fields::domain_half_width>();
+            const auto& body = p.template column<gimlet::fields::body>();
+            std::vector<double> edge(lines.size(), std::numeric_limits<double>::infinity());
+            for (std::size_t i = 0; i < p.size(); ++i)
+                for (std::size_t j = 0; j < lines.size(); ++j)
+                    if (body[i] == lines[j].body && std::abs(x[i][1] - lines[j].point[1]) <= strip &&
+                        std::abs(x[i][2] - lines[j].point[2]) <= strip)
+                        edge[j] = std::min(edge[j], double(x[i][0] - half[i][0]));
+            for (std::size_t j = 0; j < lines.size(); ++j)
+                if (std::isfinite(edge[j]) && 2 * edge[j] > min_width) out[j] = 2 * edge[j];
+        }
+        return out;
     }
 
     // The state carried from sample to sample, by name (for checkpoints).
@@ -473,9 +582,10 @@ private:
     std::vector<double> levels_;
     // The hot-spot search's scratch, kept between the steps' calls (a cache: peaks() stays
     // const, and is not called from two threads at once).
-    mutable gimlet::diagnostics::hot_spot_workspace<S::vector> hot_work_;
+    mutable gimlet::diagnostics::hot_spot_workspace<Vector> hot_work_;
     double centre_y_[2];
 };
+using monitor = monitor_of<S::vector>;
 
 // What a whole run comes to (summary.csv). D_max is the largest D after the first contact and
 // before the secondary impact (or the run's end); a contact is D falling to zero.
@@ -551,7 +661,8 @@ struct summary {
 
     // Every step: the peaks of the hot spot, the hottest particle, the compression and the hot
     // material (monitor::peaks).
-    void track(const sample& r) {
+    template <class Vector>
+    void track(const sample_of<Vector>& r) {
         if (r.hot_spot > max_hot_spot)
             max_hot_spot = r.hot_spot, t_hot_spot = r.time, hot_spot_eta = r.hot_spot_eta, settled_hot_spot = -1;
         max_temperature = std::max(max_temperature, r.max_temperature);
@@ -559,7 +670,8 @@ struct summary {
         for (std::size_t k = 0; k < hot_levels; ++k) max_hot_mass[k] = std::max(max_hot_mass[k], r.hot_mass[k]);
     }
 
-    void add(const sample& r, const settings& s) {
+    template <class Vector>
+    void add(const sample_of<Vector>& r, const settings& s) {
         // Contacting domains jitter by a few hundredths of a particle spacing, so the bodies
         // count as separated once D exceeds a quarter of a spacing, and as touching again when
         // D falls below a twentieth.

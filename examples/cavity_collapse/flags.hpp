@@ -22,7 +22,7 @@ inline constexpr const char* usage =
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
     "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--volume-filter off|on] [--viscosity-linear B1] "
     "[--viscosity-quadratic B2] [--cfl C] [--temperature isentrope|paper] [--threads N] "
-    "[--geometry plane|axisymmetric] [--quiet] "
+    "[--geometry plane|axisymmetric|3d] [--side periodic|free] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
 // The scene's settings from the flags; each refused by name (std::invalid_argument) if out of
@@ -64,8 +64,11 @@ inline settings read_settings(example::cli& args) {
         }
     }
     s.threads = args.integer("threads", 0, 0, 256);
-    s.geometry = args.choice("geometry", "plane", {"plane", "axisymmetric"}) == "plane" ? geometry_kind::plane
-                                                                                         : geometry_kind::axisymmetric;
+    const std::string geometry = args.choice("geometry", "plane", {"plane", "axisymmetric", "3d"});
+    s.geometry = geometry == "plane"          ? geometry_kind::plane
+                 : geometry == "axisymmetric" ? geometry_kind::axisymmetric
+                                              : geometry_kind::three_d;
+    s.free_side = args.choice("side", "periodic", {"periodic", "free"}) == "free";
     return s;
 }
 

@@ -9,7 +9,8 @@
 //                   [--hot-spot-radius 0.75] [--volumetric-average off] [--pic-fraction 0]
 //                   [--consistent-mass 4] [--volume-filter off|on] [--viscosity-linear 0.12]
 //                   [--viscosity-quadratic 2.4] [--cfl 0.4]
-//                   [--temperature isentrope|paper] [--threads 0] [--geometry plane|axisymmetric]
+//                   [--temperature isentrope|paper] [--threads 0]
+//                   [--geometry plane|axisymmetric|3d] [--side periodic|free (3d)]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -63,12 +64,16 @@ using example::plotter;
 using example::shell_word;
 
 // The units of the sums over the particles: per metre of depth in the plane, the whole body's
-// axisymmetric.
+// axisymmetric and in 3-D.
 const char* mass_unit(const settings& s) { return s.geometry == geometry_kind::plane ? "kg_m" : "kg"; }
 
 void write_header(std::ostream& os, const settings& s) {
     os << "time_us,time_after_contact_us,D_mm,kinetic_energy,internal_energy,max_temperature_K,max_eta,"
-          "hotspot_temperature_K,hotspot_x_mm,hotspot_y_mm,wall_relative_velocity_m_s,"
+          "hotspot_temperature_K,"
+       << (s.geometry == geometry_kind::plane          ? "hotspot_x_mm,hotspot_y_mm"
+           : s.geometry == geometry_kind::axisymmetric ? "hotspot_r_mm,hotspot_z_mm"
+                                                       : "hotspot_x_mm,hotspot_y_mm,hotspot_z_mm")
+       << ",wall_relative_velocity_m_s,"
           "lower_cavity_open,lower_axial_chord_mm,lower_lateral_chord_mm,lower_closing_speed_m_s,"
           "lower_upstream_wall_speed_m_s,upper_cavity_open,upper_axial_chord_mm,upper_lateral_chord_mm,"
           "upper_closing_speed_m_s,upper_upstream_wall_speed_m_s";
@@ -80,15 +85,17 @@ void write_header(std::ostream& os, const settings& s) {
     os << '\n';
 }
 
-void write_row(std::ostream& os, const sample& r, const settings& s) {
+template <class Vector>
+void write_row(std::ostream& os, const sample_of<Vector>& r, const settings& s) {
     os << r.time * 1e6 << ',' << (r.time - contact_time(s)) * 1e6 << ',' << r.D * 1e3 << ',' << r.kinetic << ','
-       << r.internal << ',' << r.max_temperature << ',' << r.max_eta << ',' << r.hot_spot << ',' << r.hot_spot_centre[0] * 1e3 << ','
-       << r.hot_spot_centre[1] * 1e3 << ',' << r.wall_relative_velocity();
+       << r.internal << ',' << r.max_temperature << ',' << r.max_eta << ',' << r.hot_spot;
+    for (int d = 0; d < int(Vector::RowsAtCompileTime); ++d) os << ',' << r.hot_spot_centre[d] * 1e3;
+    os << ',' << r.wall_relative_velocity();
     for (const auto& c : r.cavity)
         os << ',' << int(c.open) << ',' << c.axial_chord * 1e3 << ',' << c.lateral_chord * 1e3 << ','
            << c.closing_speed << ',' << c.upstream_speed;
     for (double m : r.hot_mass) os << ',' << m;
-    const double to_mm = s.geometry == geometry_kind::plane ? 1e6 : 1e9;  // mm^2, or mm^3 for the rings
+    const double to_mm = s.geometry == geometry_kind::plane ? 1e6 : 1e9;  // mm^2, or mm^3 for whole bodies
     for (double a : r.hot_area) os << ',' << a * to_mm;
     os << '\n';
 }
@@ -156,6 +163,7 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0},
             {"cfl", s.cfl}};
     if (s.geometry != geometry_kind::plane) v["geometry"] = double(int(s.geometry));
+    if (s.geometry == geometry_kind::three_d) v["free_side"] = s.free_side ? 1.0 : 0.0;
     return v;
 }
 
@@ -170,7 +178,8 @@ struct output_state {
 // output stood, the monitor and the summary so far; the series and the snapshots' list cut
 // back to the checkpoint's rows (the interrupted run may have written more after it).
 template <class Solver>
-output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol, monitor& mon,
+output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol,
+                         monitor_of<typename Solver::vector>& mon,
                          summary& sum, const std::filesystem::path& out) {
     auto v = gimlet::io::load_checkpoint(checkpoint, sol);
     // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2), no volume
@@ -218,7 +227,7 @@ inline double landing_eta(const summary& sum) {
 // summary.csv: the run's settings, its peaks and times, the health events and how it ended.
 template <class Solver>
 void write_summary(const std::filesystem::path& file, const settings& s, const Solver& sol, const summary& sum,
-                   const monitor& mon, double wall, const std::string& status) {
+                   const monitor_of<typename Solver::vector>& mon, double wall, const std::string& status) {
     std::ofstream su(file);
     gimlet::io::exact_numbers(su);
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
@@ -253,7 +262,8 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
 
 // The run's report on standard output: where the time went and the summary's main figures.
 template <class Solver>
-void print_report(const settings& s, const Solver& sol, const summary& sum, const monitor& mon, double wall) {
+void print_report(const settings& s, const Solver& sol, const summary& sum, const monitor_of<typename Solver::vector>& mon,
+                  double wall) {
     // Where the time went: the solver's phases (solver::timings()), and the rest of the run
     // (the time step's choice, the observers, the files), which scales differently with threads.
     const auto& ph = sol.timings();
@@ -282,7 +292,7 @@ void print_report(const settings& s, const Solver& sol, const summary& sum, cons
                 "planar landing at half the largest relative wall velocity: %.4f)\n",
                 sum.max_eta, sum.hot_spot_eta, landing_eta(sum));
     std::printf("  hot material, largest mass above T_EP = %.1f K plus", mon.bulk_shock_temperature());
-    const char* grams = s.geometry == geometry_kind::plane ? "g/m" : "g";
+    const char* grams = s.geometry == geometry_kind::plane ? "g/m" : "g";  // the whole body's: kg
     for (std::size_t k = 0; k < hot_levels; ++k)
         std::printf("%s %.0f K: %.3g %s", k ? "," : "", hot_excess[k], sum.max_hot_mass[k] * 1e3, grams);
     std::printf("\n");
@@ -316,12 +326,13 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     if constexpr (std::is_same_v<partition, gimlet::multi_field::self_contact>) part.enabled = s.self_contact;
     auto scene = [&] {
         if constexpr (gimlet::is_axisymmetric_v<Space>) return make_axisymmetric_scene<run_material>(s);
+        else if constexpr (Space::dim == 3) return make_3d_scene<run_material>(s);
         else return make_scene<run_material>(s);
     };
     gimlet::solver<Space, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
         scene(), opt, contact, part);
     const auto& out = io.out;
-    monitor mon(s);
+    monitor_of<typename Space::vector> mon(s);
     summary sum;
     std::ofstream series, times;
     gimlet::io::vtp_writer_for<decltype(sol)> vtp;
@@ -364,7 +375,11 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
     std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, %s %.2f mm, cell %.3f mm, %s contact, "
                 "self-contact %s, %zu particles, %s %.2f us to %.2f us\n",
-                s.velocity, s.geometry == geometry_kind::plane ? "cavity radius" : "axisymmetric, spherical pore radius",
+                s.velocity,
+                s.geometry == geometry_kind::plane          ? "cavity radius"
+                : s.geometry == geometry_kind::axisymmetric ? "axisymmetric, spherical pore radius"
+                : s.free_side ? "3-D (a quarter of the cylinders), spherical pore radius"
+                              : "3-D (a quarter of the square array's cell), spherical pore radius",
                 s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
                 sol.particles().size(),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
@@ -372,10 +387,10 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
 
     // The last sample and its step: the per-step tracking below takes its peaks from it at that
     // step instead of searching the hot spot a second time.
-    sample sampled;
+    sample_of<typename Space::vector> sampled;
     std::uint64_t sampled_step = std::numeric_limits<std::uint64_t>::max();
     auto take_sample = [&](const auto& so) {
-        const sample r = mon.measure(so);
+        const auto r = mon.measure(so);
         write_row(series, r, s);
         sum.add(r, s);
         ++at.rows;
@@ -491,8 +506,9 @@ int main(int argc, char** argv) try {
     // Every flag combination a user may give is one binary of two solvers: the single field, and
     // a multi-field law with the temperature chosen at run time (chosen_law, chosen_temperature in
     // cavity_collapse.hpp), instead of six (3 contact laws x 2 temperatures).
-    // The axisymmetric run is one more solver, of the multi-field laws only (validate()).
+    // The axisymmetric and 3-D runs are one more solver each, of the multi-field laws only (validate()).
     const int rc = s.geometry == geometry_kind::axisymmetric ? run<A>(s, io, chosen_law(s.contact))
+                   : s.geometry == geometry_kind::three_d   ? run<S3>(s, io, chosen_law(s.contact))
                    : s.contact == contact_kind::single      ? run<S>(s, io, gimlet::contact::single_field{})
                                                             : run<S>(s, io, chosen_law(s.contact));
     if (!figures) return rc;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstddef>
 #include <exception>
 #include <filesystem>
@@ -19,7 +20,7 @@
 
 namespace example {
 
-// A particle map for figures, one CSV row per particle: position (mm), mean pressure (MPa),
+// A particle map for figures, one CSV row per particle (in 3-D, of the section y = 0): position (mm), mean pressure (MPa),
 // temperature (K), body and the in-plane deformation gradient F (cavity_collapse's plot.py
 // paints each particle as its current domain, its initial square mapped by F, so that only a
 // real gap shows; docs/io.md, "The flagship's particle maps"). The numbers are
@@ -51,19 +52,25 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
             };
             const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
             t.reserve((last - first) * 160);
+            // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = 0 (the particles whose
+            // domains reach it, the first layer of a quarter whose symmetry plane it is), in x and
+            // z, with F's (x, z) block.
+            constexpr int up = Solver::dim - 1;
             for (std::size_t i = first; i < last; ++i) {
                 const auto p = ps[i];
                 const auto& x = p.template get<gimlet::fields::position>();
+                if constexpr (Solver::dim == 3)
+                    if (!(std::abs(x[1]) <= p.template get<gimlet::fields::domain_half_width>()[1])) continue;
                 put(double(x[0] * 1e3), ',');
-                put(double(x[1] * 1e3), ',');
+                put(double(x[up] * 1e3), ',');
                 put(double(gimlet::mean_pressure(p) * 1e-6), ',');
                 put(double(p.template get<gimlet::fields::temperature>()), ',');
                 put(p.template get<gimlet::fields::body>(), ',');
                 const auto& F = p.template get<gimlet::fields::deformation_gradient>();
                 put(double(F(0, 0)), ',');
-                put(double(F(0, 1)), ',');
-                put(double(F(1, 0)), ',');
-                put(double(F(1, 1)), '\n');
+                put(double(F(0, up)), ',');
+                put(double(F(up, 0)), ',');
+                put(double(F(up, up)), '\n');
             }
         } catch (...) {
             failed[std::size_t(b)] = std::current_exception();
