@@ -4,10 +4,12 @@
 // blocks 40 mm x 50 mm, one above the other with a 4 mm gap, each with a circular cavity of
 // radius R at its centre, moving towards each other at v; periodic in x, free in y.
 // Axisymmetric (--geometry axisymmetric): each block a cylinder of radius 20 mm around the axis
-// of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free. 3-D
-// (--geometry 3d): spherical pores in a square array of the plane run's 40 mm period (--side
-// periodic), or the axisymmetric run's cylinders (--side free), a quarter of it simulated
-// between the symmetry planes x = 0 and y = 0 (and x = y = 20 mm for the array).
+// of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free (--side
+// free, the default) or held by a frictionless wall (--side array: the square array's cell
+// approximated by the cylinder inscribed in it). 3-D (--geometry 3d): spherical pores in a
+// square array of the plane run's 40 mm period (--side array, the default), or the axisymmetric
+// run's free cylinders (--side free), a quarter simulated between the symmetry planes x = 0 and
+// y = 0 (and x = y = 20 mm for the array).
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
 #include "common/hmx_defaults.hpp"
@@ -82,9 +84,14 @@ struct settings {
     bool self_contact = true;
     int threads = 0;
     geometry_kind geometry = geometry_kind::plane;
-    // 3-D only: the pores in a square array of period `width` (periodic), or each block a
-    // cylinder of radius width / 2 with its side free (free).
-    bool free_side = false;
+    // Axisymmetric and 3-D: the blocks' side. free: each block a cylinder of radius width / 2,
+    // its side free; array: the square array of period `width` (3-D), approximated axisymmetric
+    // by the inscribed cylinder with a frictionless wall. automatic: free axisymmetric, the array
+    // in 3-D (and the plane run's periodic blocks).
+    enum class side_kind { automatic, array, free } side = side_kind::automatic;
+    [[nodiscard]] bool free_side() const {
+        return side == side_kind::free || (side == side_kind::automatic && geometry == geometry_kind::axisymmetric);
+    }
 };
 
 // ---- The binary's run-time choices (--contact, --temperature) as policies
@@ -185,12 +192,7 @@ inline S::vector cavity_centre(int body) {
 // The first coordinate of the line of impact through the cavities' centres: the middle of the
 // plane blocks' width, the axis (r = 0) of the cylinders, the corner x = y = 0 of the 3-D quarter.
 inline double axis_coordinate(const settings& s) { return s.geometry == geometry_kind::plane ? 0.5 * width : 0.0; }
-// The whole body's share of a sum over the particles: 1 in the plane (per metre of depth), 2 pi
-// for the rings of the axisymmetric run (per radian), 4 for the 3-D quarter (the whole cylinder,
-// or the array's cell of one pore).
-inline double body_factor(const settings& s) {
-    return s.geometry == geometry_kind::plane ? 1.0 : s.geometry == geometry_kind::axisymmetric ? 2 * 3.141592653589793 : 4.0;
-}
+
 // Nominal time of first contact: the gap closes at 2v. The paper's snapshot times fit a clock
 // started at contact (docs/reproduction.md), so the series carries both.
 inline double contact_time(const settings& s) { return gap / (2 * s.velocity); }
@@ -239,10 +241,10 @@ inline void validate(const settings& s) {
                 std::string(s.volume_filter ? "--volume-filter" : "--volumetric-average") + " with " + g, "on",
                 "off (the filters are derived for plane-strain cells)");
     }
-    if (s.free_side && s.geometry != geometry_kind::three_d)
-        throw gimlet::invalid_parameter("--side with --geometry " + name_of(s.geometry), "free",
-                                        "periodic (--side is for --geometry 3d; the axisymmetric run's side is "
-                                        "always free, the plane run's periodic)");
+    if (s.side != settings::side_kind::automatic && s.geometry == geometry_kind::plane)
+        throw gimlet::invalid_parameter("--side with --geometry plane", s.free_side() ? "free" : "array",
+                                        "not given (--side is for the axisymmetric and 3-D runs; the plane "
+                                        "run's blocks are periodic)");
 }
 
 template <class M = material>
@@ -276,17 +278,18 @@ gimlet::scene::scene<S, M> make_scene(const settings& s) {
 }
 
 // The axisymmetric run (--geometry axisymmetric): each block a cylinder of radius width / 2 around
-// the axis of impact r = 0, with a spherical pore of radius R centred on the axis, its side free;
-// the grid reaches past the side by as much as past the ends.
+// the axis of impact r = 0, with a spherical pore of radius R centred on the axis. Its side free:
+// the grid reaches past it by as much as past the ends; or held (--side array): the grid ends at
+// the side, a slip wall (the boundary along r acts at the outer radius; the axis holds itself).
 template <class M = material>
 gimlet::scene::scene<A, M> make_axisymmetric_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<A> gs;
     const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
     gs.lower = A::vector(0.0, -margin);
-    gs.upper = A::vector(0.5 * width + margin, 2 * height + gap + margin);
+    gs.upper = A::vector(0.5 * width + (s.free_side() ? margin : 0.0), 2 * height + gap + margin);
     gs.cell = s.cell;
-    gs.bc = {gimlet::boundary::free, gimlet::boundary::free};
+    gs.bc = {s.free_side() ? gimlet::boundary::free : gimlet::boundary::slip, gimlet::boundary::free};
     gimlet::scene::scene<A, M> scene(gs);
     auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
         {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
@@ -328,7 +331,7 @@ gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S3> gs;
     const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
-    const double side = s.free_side ? 0.5 * width + margin : 0.5 * width;
+    const double side = s.free_side() ? 0.5 * width + margin : 0.5 * width;
     gs.lower = S3::vector(0.0, 0.0, -margin);
     gs.upper = S3::vector(side, side, 2 * height + gap + margin);
     gs.cell = s.cell;
@@ -350,7 +353,7 @@ gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
             scene.add_body(upper, hmx, down, 2, "upper block");
         }
     };
-    if (s.free_side)
+    if (s.free_side())
         add(quarter_cylinder{0.5 * width, 0.0, height}, quarter_cylinder{0.5 * width, height + gap, 2 * height + gap});
     else
         add(gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(0.5 * width, 0.5 * width, height)),
@@ -442,9 +445,9 @@ public:
         const auto hot = gimlet::diagnostics::hot_material(sol, levels_);
         if (s_.geometry == geometry_kind::plane)
             for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
-        else  // the rings' per-radian sums or the quarter's: the whole mass (kg) and volume (m^3)
+        else  // the whole body's mass (kg) and volume (m^3): the library's, or 4 times the 3-D quarter's
             for (std::size_t k = 0; k < hot_levels; ++k)
-                r.hot_mass[k] = body_factor(s_) * hot.mass[k], r.hot_area[k] = body_factor(s_) * hot.volume[k];
+                r.hot_mass[k] = quarters_ * hot.mass[k], r.hot_area[k] = quarters_ * hot.volume[k];
         return r;
     }
 
@@ -501,7 +504,7 @@ public:
         r.hot_area = p.hot_area;
         r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
         r.internal = gimlet::diagnostics::internal_energy(sol);
-        if constexpr (dim == 3) r.kinetic *= body_factor(s_), r.internal *= body_factor(s_);  // the quarter's, times 4
+        if constexpr (dim == 3) r.kinetic *= quarters_, r.internal *= quarters_;
         if (s_.radius > 0) {
             // Each cavity's axial chord, then the lateral chords of the open ones: two passes
             // over the particles, each gathering all its lines' strips (void_chords).
@@ -584,6 +587,9 @@ private:
     // const, and is not called from two threads at once).
     mutable gimlet::diagnostics::hot_spot_workspace<Vector> hot_work_;
     double centre_y_[2];
+    // The whole body's share of the library's sums: the 3-D run's quarter is a quarter of it
+    // (the axisymmetric sums are the whole body's already, the plane's per metre of depth).
+    static constexpr double quarters_ = dim == 3 ? 4.0 : 1.0;
 };
 using monitor = monitor_of<S::vector>;
 

@@ -22,7 +22,7 @@ inline constexpr const char* usage =
     "[--snapshot-every-us T] [--snapshots-after-contact-us T1,T2,...] [--hot-spot-radius R_mm] "
     "[--volumetric-average off|on] [--pic-fraction A] [--consistent-mass K] [--volume-filter off|on] [--viscosity-linear B1] "
     "[--viscosity-quadratic B2] [--cfl C] [--temperature isentrope|paper] [--threads N] "
-    "[--geometry plane|axisymmetric|3d] [--side periodic|free] [--quiet] "
+    "[--geometry plane|axisymmetric|3d] [--side array|free] [--quiet] "
     "[--no-figures] [--output DIR] [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]";
 
 // The scene's settings from the flags; each refused by name (std::invalid_argument) if out of
@@ -68,7 +68,9 @@ inline settings read_settings(example::cli& args) {
     s.geometry = geometry == "plane"          ? geometry_kind::plane
                  : geometry == "axisymmetric" ? geometry_kind::axisymmetric
                                               : geometry_kind::three_d;
-    s.free_side = args.choice("side", "periodic", {"periodic", "free"}) == "free";
+    const std::string side = args.choice("side", "", {"array", "free"});
+    s.side = side.empty() ? settings::side_kind::automatic
+                          : (side == "free" ? settings::side_kind::free : settings::side_kind::array);
     return s;
 }
 

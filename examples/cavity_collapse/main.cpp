@@ -10,7 +10,7 @@
 //                   [--consistent-mass 4] [--volume-filter off|on] [--viscosity-linear 0.12]
 //                   [--viscosity-quadratic 2.4] [--cfl 0.4]
 //                   [--temperature isentrope|paper] [--threads 0]
-//                   [--geometry plane|axisymmetric|3d] [--side periodic|free (3d)]
+//                   [--geometry plane|axisymmetric|3d] [--side array|free]
 //                   [--quiet] [--no-figures]
 //                   [--output results/cavity_collapse]
 //                   [--checkpoint FILE --checkpoint-at-us T] [--restart FILE]
@@ -163,7 +163,7 @@ gimlet::io::checkpoint_values fixed_on_restart(const settings& s) {
             {"viscosity_quadratic", s.viscosity_quadratic}, {"volume_filter", s.volume_filter ? 1.0 : 0.0},
             {"cfl", s.cfl}};
     if (s.geometry != geometry_kind::plane) v["geometry"] = double(int(s.geometry));
-    if (s.geometry == geometry_kind::three_d) v["free_side"] = s.free_side ? 1.0 : 0.0;
+    if (s.geometry != geometry_kind::plane) v["free_side"] = s.free_side() ? 1.0 : 0.0;
     return v;
 }
 
@@ -238,7 +238,7 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl,hotspot_eta,landing_eta";
     for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_" << mass_unit(s);
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
-    su << ",geometry,status\n";
+    su << ",geometry,side,status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
        << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
@@ -254,7 +254,8 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
        << ',' << landing_eta(sum);
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
-    su << ',' << name_of(s.geometry) << ',' << status << '\n';
+    su << ',' << name_of(s.geometry) << ','
+       << (s.geometry == geometry_kind::plane ? "periodic" : s.free_side() ? "free" : "array") << ',' << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + file.string());
 
@@ -377,9 +378,11 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                 "self-contact %s, %zu particles, %s %.2f us to %.2f us\n",
                 s.velocity,
                 s.geometry == geometry_kind::plane          ? "cavity radius"
-                : s.geometry == geometry_kind::axisymmetric ? "axisymmetric, spherical pore radius"
-                : s.free_side ? "3-D (a quarter of the cylinders), spherical pore radius"
-                              : "3-D (a quarter of the square array's cell), spherical pore radius",
+                : s.geometry == geometry_kind::axisymmetric
+                    ? (s.free_side() ? "axisymmetric, spherical pore radius"
+                                     : "axisymmetric, side held (the array's cell), spherical pore radius")
+                : s.free_side() ? "3-D (a quarter of the cylinders), spherical pore radius"
+                                : "3-D (a quarter of the square array's cell), spherical pore radius",
                 s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
                 sol.particles().size(),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);

@@ -111,10 +111,11 @@ TEST_CASE("cavity_collapse: a coarse run writes complete, finite outputs", "[exa
     for (std::size_t i = 0; i < summary.columns.size(); ++i)
         if (summary.columns[i] != "contact" && summary.columns[i] != "status" && summary.columns[i] != "volumetric_average" &&
             summary.columns[i] != "temperature" && summary.columns[i] != "self_contact" && summary.columns[i] != "volume_filter" &&
-            summary.columns[i] != "geometry")
+            summary.columns[i] != "geometry" && summary.columns[i] != "side")
             CHECK(finite_number(summary.rows[0][i]));
     CHECK(summary.rows[0][summary.column("self_contact")] == "on");  // the default with distance contact
     CHECK(summary.rows[0][summary.column("geometry")] == "plane");
+    CHECK(summary.rows[0][summary.column("side")] == "periodic");
     // The largest particle compression is reported, and it is a compression a 300 m/s impact
     // makes (Rankine-Hugoniot eta 0.084; the contact plane over-compresses a little).
     const double max_eta = std::stod(summary.rows[0][summary.column("max_eta")]);
@@ -310,6 +311,7 @@ TEST_CASE("cavity_collapse: an axisymmetric coarse run writes complete, finite o
     const auto summary = read_csv(dir / "whole" / "summary.csv");
     REQUIRE(summary.rows.size() == 1);
     CHECK(summary.rows[0][summary.column("geometry")] == "axisymmetric");
+    CHECK(summary.rows[0][summary.column("side")] == "free");
     CHECK(summary.column("max_hot_mass_above_TEP_plus_100K_kg") < summary.columns.size());
 
     // A checkpoint at 8 us and the run resumed from it write the uninterrupted run's series.
@@ -325,6 +327,40 @@ TEST_CASE("cavity_collapse: an axisymmetric coarse run writes complete, finite o
                   ckpt.string() + "\"",
               dir, log) != 0);
     CHECK((log.find("geometry") != std::string::npos || log.find("hoop_stretch") != std::string::npos));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cavity_collapse: a spherical pore in the cylinders, axisymmetric and in 3-D, at 2 mm cells",
+          "[examples][cavity][axisymmetric][long]") {
+    // The same body both ways (R = 10 mm, 300 m/s, 2 mm cells, to 120 us): two HMX cylinders of
+    // radius 20 mm with a spherical pore each, the 3-D run a quarter of them between symmetry
+    // planes. What the coarse cell resolves agrees within the 1 mm comparison's bounds
+    // (docs/reproduction.md, "Spherical pores"): D_max and the times within 5 %, the hot mass
+    // within 15 %. At 2 mm the pore keeps a pocket of about a particle spacing (1 mm, the 5 % of
+    // 2R closure asks for) to the end in both, so the collapse time (axial chord below R) stands
+    // for the closure time; and no material is 100 K above T_EP, so the hot mass compared is
+    // that 50 K above it (measured: 9.58 g in 3-D, 8.77 g axisymmetric).
+    const fs::path dir = fs::temp_directory_path() / "gimlet_test_cavity_spherical";
+    fs::remove_all(dir);
+    std::string log;
+    const std::string args = "--cell 2 --radius 10 --velocity 300 --end-us 120 --snapshot-every-us 0 --sample-every-us 0.5";
+    REQUIRE(run(args + " --geometry axisymmetric --output \"" + (dir / "axi").string() + "\"", dir, log) == 0);
+    REQUIRE(run(args + " --geometry 3d --side free --output \"" + (dir / "3d").string() + "\"", dir, log) == 0);
+    const auto axi = read_csv(dir / "axi" / "summary.csv"), d3 = read_csv(dir / "3d" / "summary.csv");
+    auto value = [](const table& t, const char* name) { return std::stod(t.rows[0][t.column(name)]); };
+    CHECK(d3.rows[0][d3.column("geometry")] == "3d");
+    CHECK(d3.rows[0][d3.column("side")] == "free");
+    for (const char* name : {"D_max_mm", "t_D_max_us", "secondary_impact_us", "lower_collapse_us", "upper_collapse_us"}) {
+        INFO(name << ": 3-D " << value(d3, name) << ", axisymmetric " << value(axi, name));
+        CHECK(value(axi, name) > 0);
+        CHECK(value(d3, name) == Approx(value(axi, name)).epsilon(0.05));
+    }
+    const char* hot = "max_hot_mass_above_TEP_plus_50K_kg";
+    INFO("hot mass above T_EP + 50 K: 3-D " << value(d3, hot) << " kg, axisymmetric " << value(axi, hot) << " kg");
+    CHECK(value(axi, hot) > 0);
+    CHECK(value(d3, hot) == Approx(value(axi, hot)).epsilon(0.15));
+    CHECK(value(d3, "lower_closure_us") == -1);  // the pocket above: neither closes at 2 mm
+    CHECK(value(axi, "lower_closure_us") == -1);
     fs::remove_all(dir);
 }
 

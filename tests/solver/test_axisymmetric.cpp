@@ -208,7 +208,7 @@ TEST_CASE("axisymmetric solver: an elastic cylinder under a slow axial strain co
     //
     // A particle is a ring over [r_p - l, r_p + l] and moves with its mass-weighted mean velocity
     // (the r-weighted weights): under u_r = c r it moves by c r_c, r_c = r_p + l^2 / (3 r_p) its
-    // ring's centroid (1.33 r_p for the first ring at h/4 from the axis, 1.002 r_p at 4 mm).
+    // ring's centroid (1.33 r_p for the first ring at h/4 from the axis, 1.0013 r_p at 4 mm).
     // So the exact displacement a ring has is u_r(r_c).
     const double radius = 0.008, height = 0.032, h = 1e-3, rho = 1000, young = 1e9, nu = 0.3, eps = -1e-3;
     const int ppc = 2;

@@ -10,6 +10,7 @@
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/material_point.hpp"
+#include "gimlet/diagnostics/conservation.hpp"
 
 #include <algorithm>
 #include <array>
@@ -641,8 +642,9 @@ template <class Solver>
 }
 
 /// The material hotter than each of `temperatures` (K): its mass (kg; per metre of depth in plane
-/// strain, per radian in an axisymmetric space: times 2 pi for the whole ring) and current volume
-/// J V0 (m^3; m^2 per metre in plane strain, m^3 per radian axisymmetric), summed in particle order. This is
+/// strain) and current volume J V0 (m^3; m^2 per metre in plane strain), summed in particle order;
+/// in an axisymmetric space the whole body's, 2 pi times the rings' per-radian sums (as
+/// diagnostics::total_mass). This is
 /// how pore-collapse studies compare hot spots across resolutions: the amount of material above
 /// a temperature, not the hottest particle (docs/reproduction.md).
 struct hot_material_result {
@@ -684,6 +686,10 @@ template <class Solver>
                     r.mass[k] += double(m[i]);
                     r.volume[k] += volume;
                 }
+    for (std::size_t k = 0; k < temperatures.size(); ++k) {
+        r.mass[k] = detail::whole_body<Solver>(r.mass[k]);
+        r.volume[k] = detail::whole_body<Solver>(r.volume[k]);
+    }
     return r;
 }
 

@@ -14,7 +14,7 @@
 namespace gimlet::shape {
 
 /// A shape's axisymmetric form: along r, the r-weighted weight, gradient and hoop factor of each
-/// node of its stencil (shape::detail::radial_factors; docs/equations.md, "Axisymmetric GIMP");
+/// node of its stencil (gimlet::radial_factors; docs/equations.md, "Axisymmetric GIMP");
 /// along z the shape's own 1-D factors. Defined for ugimp and linear; a shape without one is
 /// refused by an axisymmetric solver at compile time.
 ///
@@ -29,7 +29,7 @@ template <>
 struct axisymmetric_form<ugimp> {
     template <class Real>
     static void radial(Real r_p, Real half, Real h, int& first,
-                       std::array<detail::radial_factors<Real>, ugimp::stencil>& f) noexcept {
+                       std::array<radial_factors<Real>, ugimp::stencil>& f) noexcept {
         detail::axisymmetric_gimp_radial_stencil(r_p, half, h, first, f);
     }
 };
@@ -39,18 +39,18 @@ template <>
 struct axisymmetric_form<linear> {
     template <class Real>
     static void radial(Real r_p, Real /*half*/, Real h, int& first,
-                       std::array<detail::radial_factors<Real>, linear::stencil>& f) noexcept {
+                       std::array<radial_factors<Real>, linear::stencil>& f) noexcept {
         (void)detail::locate<linear::stencil>(r_p / h, first);
         for (int a = 0; a < linear::stencil; ++a) {
             const int k = first + a;
-            f[a] = k < 0 ? detail::radial_factors<Real>{} : detail::axisymmetric_linear_radial(r_p, Real(k) * h, h);
+            f[a] = k < 0 ? radial_factors<Real>{} : detail::axisymmetric_linear_radial(r_p, Real(k) * h, h);
         }
     }
 };
 
 /// Whether shape Sh has an axisymmetric form (axisymmetric_form).
 template <class Sh>
-concept has_axisymmetric_form = requires(double r, int& first, std::array<detail::radial_factors<double>, Sh::stencil>& f) {
+concept has_axisymmetric_form = requires(double r, int& first, std::array<radial_factors<double>, Sh::stencil>& f) {
     axisymmetric_form<Sh>::radial(r, r, r, first, f);
 };
 

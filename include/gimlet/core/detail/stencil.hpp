@@ -7,7 +7,7 @@
 
 #include "gimlet/core/grid.hpp"
 #include "gimlet/core/space.hpp"
-#include "gimlet/shape/detail/axisymmetric_gimp.hpp"
+#include "gimlet/core/radial_factors.hpp"
 
 #include <array>
 #include <cstddef>
@@ -45,7 +45,7 @@ struct stencil {
             // Along r the shape's axisymmetric form (r-weighted, the axis at r = 0 = the grid's
             // lower bound), along z its own weights.
             const real h = g.cell();
-            std::array<shape::detail::radial_factors<real>, W> f;
+            std::array<radial_factors<real>, W> f;
             int first = 0;
             shape::axisymmetric_form<Shape>::radial(x[0], half_width[0] * h, h, first, f);
             finish_axis(g, 0, x[0] * g.inv_cell(), first);

@@ -4,6 +4,7 @@
 /// The radial factors of axisymmetric uGIMP: the building block of a 2-D axisymmetric solver
 /// (x -> r, y -> z), where every integral over a particle's domain carries the weight r.
 
+#include "gimlet/core/radial_factors.hpp"
 #include "gimlet/shape/detail/gimp_kernel.hpp"
 
 #include <algorithm>
@@ -12,14 +13,7 @@
 
 namespace gimlet::shape::detail {
 
-/// A node's radial factors for one particle: the r-weighted weight S^r, the r-weighted mean of
-/// the hat's derivative G^r (1/m) and the hoop factor T^r (1/m).
-template <class Real>
-struct radial_factors {
-    Real weight = 0;    ///< S^r = ∫ N_i r dr / ∫ r dr over the particle's domain
-    Real gradient = 0;  ///< G^r = ∫ N_i' r dr / ∫ r dr (not dS^r/dr_p)
-    Real hoop = 0;      ///< T^r = ∫ N_i dr / ∫ r dr (the r-weighted mean of N_i / r)
-};
+using gimlet::radial_factors;
 
 /// The radial factors of the node at `r_i` >= 0 for a uGIMP particle centred at `r_p` > 0 of
 /// half-width `half` (m) on cells of `h` (m), the linear hat N_i(r) = max(0, 1 - |r - r_i| / h).
