@@ -7,9 +7,9 @@
 // of impact, 50 mm long, with a spherical pore of radius R on the axis, its side free (--side
 // free, the default) or held by a frictionless wall (--side array: the square array's cell
 // approximated by the cylinder inscribed in it). 3-D (--geometry 3d): spherical pores in a
-// square array of the plane run's 40 mm period (--side array, the default), or the axisymmetric
-// run's free cylinders (--side free), a quarter simulated between the symmetry planes x = 0 and
-// y = 0 (and x = y = 20 mm for the array).
+// square array of the plane run's 40 mm period (--side array, the default: one pore's cell,
+// periodic in x and y), or the axisymmetric run's free cylinders (--side free, a quarter
+// simulated between the symmetry planes x = 0 and y = 0).
 // Shared by the example and its tests. docs/reproduction.md defines the measured quantities.
 
 #include "common/hmx_defaults.hpp"
@@ -189,9 +189,13 @@ inline double interface_y() { return height + 0.5 * gap; }
 inline S::vector cavity_centre(int body) {
     return S::vector(0.5 * width, body == 0 ? 0.5 * height : 1.5 * height + gap);
 }
-// The first coordinate of the line of impact through the cavities' centres: the middle of the
-// plane blocks' width, the axis (r = 0) of the cylinders, the corner x = y = 0 of the 3-D quarter.
-inline double axis_coordinate(const settings& s) { return s.geometry == geometry_kind::plane ? 0.5 * width : 0.0; }
+// The coordinates across the line of impact through the cavities' centres: the middle of the
+// plane blocks' width and of the 3-D array's cell, the axis (r = 0) of the cylinders, the corner
+// x = y = 0 of the 3-D cylinders' quarter.
+inline double axis_coordinate(const settings& s) {
+    return s.geometry == geometry_kind::plane || (s.geometry == geometry_kind::three_d && !s.free_side()) ? 0.5 * width
+                                                                                                         : 0.0;
+}
 
 // Nominal time of first contact: the gap closes at 2v. The paper's snapshot times fit a clock
 // started at contact (docs/reproduction.md), so the series carries both.
@@ -321,28 +325,31 @@ struct quarter_cylinder {
     [[nodiscard]] S3::vector upper() const { return S3::vector(radius, radius, hi); }
 };
 
-// The 3-D run (--geometry 3d): the quarter x, y >= 0 of the blocks, whose pores are centred on
-// the z axis; the planes x = 0 and y = 0 are symmetry planes (slip walls). --side periodic: each
-// block the quarter [0, width / 2]^2 of a pore's cell in a square array of period `width`, whose
-// planes x = y = width / 2 are symmetry planes too; --side free: a quarter of the axisymmetric
-// run's cylinder, the grid reaching past its side as past its ends.
+// The 3-D run (--geometry 3d). --side array: each block one pore's cell [0, width]^2 of a square
+// array, periodic in x and y, the pore at its centre. --side free: the quarter x, y >= 0 of the
+// axisymmetric run's cylinders, whose pores are centred on the z axis, between the symmetry
+// planes x = 0 and y = 0 (slip walls: a jet converging on the axis would carry particles across
+// them, as a ring across the axis; the cylinders' pores collapse without one at 300 m/s), the
+// grid reaching past the side as past the ends.
 template <class M = material>
 gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S3> gs;
     const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
-    const double side = s.free_side() ? 0.5 * width + margin : 0.5 * width;
+    const double side = s.free_side() ? 0.5 * width + margin : width;
     gs.lower = S3::vector(0.0, 0.0, -margin);
     gs.upper = S3::vector(side, side, 2 * height + gap + margin);
     gs.cell = s.cell;
-    gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip, gimlet::boundary::free};
+    const auto across = s.free_side() ? gimlet::boundary::slip : gimlet::boundary::periodic;
+    gs.bc = {across, across, gimlet::boundary::free};
     gimlet::scene::scene<S3, M> scene(gs);
     auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
         {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
     if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
         hmx.thermal.use_paper(s.paper_temperature);
     const S3::vector up(0.0, 0.0, s.velocity), down(0.0, 0.0, -s.velocity);
-    const S3::vector c0(0.0, 0.0, cavity_centre(0)[1]), c1(0.0, 0.0, cavity_centre(1)[1]);
+    const double axis = axis_coordinate(s);
+    const S3::vector c0(axis, axis, cavity_centre(0)[1]), c1(axis, axis, cavity_centre(1)[1]);
     auto add = [&](const auto& lower, const auto& upper) {
         using gimlet::scene::ball, gimlet::scene::difference;
         if (s.radius > 0) {
@@ -356,8 +363,8 @@ gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
     if (s.free_side())
         add(quarter_cylinder{0.5 * width, 0.0, height}, quarter_cylinder{0.5 * width, height + gap, 2 * height + gap});
     else
-        add(gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(0.5 * width, 0.5 * width, height)),
-            gimlet::scene::box<S3>(S3::vector(0.0, 0.0, height + gap), S3::vector(0.5 * width, 0.5 * width, 2 * height + gap)));
+        add(gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(width, width, height)),
+            gimlet::scene::box<S3>(S3::vector(0.0, 0.0, height + gap), S3::vector(width, width, 2 * height + gap)));
     return scene;
 }
 
@@ -447,7 +454,7 @@ public:
             for (std::size_t k = 0; k < hot_levels; ++k) r.hot_mass[k] = hot.mass[k], r.hot_area[k] = hot.volume[k];
         else  // the whole body's mass (kg) and volume (m^3): the library's, or 4 times the 3-D quarter's
             for (std::size_t k = 0; k < hot_levels; ++k)
-                r.hot_mass[k] = quarters_ * hot.mass[k], r.hot_area[k] = quarters_ * hot.volume[k];
+                r.hot_mass[k] = quarters() * hot.mass[k], r.hot_area[k] = quarters() * hot.volume[k];
         return r;
     }
 
@@ -504,7 +511,7 @@ public:
         r.hot_area = p.hot_area;
         r.kinetic = gimlet::diagnostics::kinetic_energy(sol);
         r.internal = gimlet::diagnostics::internal_energy(sol);
-        if constexpr (dim == 3) r.kinetic *= quarters_, r.internal *= quarters_;
+        if constexpr (dim == 3) r.kinetic *= quarters(), r.internal *= quarters();
         if (s_.radius > 0) {
             // Each cavity's axial chord, then the lateral chords of the open ones: two passes
             // over the particles, each gathering all its lines' strips (void_chords).
@@ -539,20 +546,20 @@ public:
     // The point of the line of impact at `along` on the last axis.
     [[nodiscard]] Vector on_axis(double along) const {
         Vector x = Vector::Zero();
-        if constexpr (dim == 2) x[0] = axis_coordinate(s_);
+        for (int d = 0; d < dim - 1; ++d) x[d] = axis_coordinate(s_);
         x[dim - 1] = along;
         return x;
     }
 
-    // The length of the void along each line (0 where none is wider than min_width). In the plane
-    // and axisymmetric runs the library's chords (the axisymmetric strip is mirrored across the
-    // axis by the library). The 3-D quarter's line along x starts on the symmetry plane x = 0, its
-    // mirror: the void spans -e to e, e the smallest domain edge x - l of the strip's particles.
+    // The length of the void along each line (0 where none is wider than min_width): the library's
+    // chords (the axisymmetric strip is mirrored across the axis by the library). The 3-D
+    // quarter's line along x starts on the symmetry plane x = 0, its mirror: the void spans -e to
+    // e, e the smallest domain edge x - l of the strip's particles.
     template <class Solver>
     std::vector<double> lateral_chords(const Solver& sol, const std::vector<gimlet::diagnostics::chord_line<Vector>>& lines,
                                        double strip, double min_width) const {
         std::vector<double> out(lines.size(), 0.0);
-        if constexpr (dim == 2) {
+        if (dim == 2 || !s_.free_side()) {
             const auto found = gimlet::diagnostics::void_chords(sol, lines, strip, min_width);
             for (std::size_t j = 0; j < lines.size(); ++j) out[j] = found[j].length();
         } else {
@@ -587,9 +594,10 @@ private:
     // const, and is not called from two threads at once).
     mutable gimlet::diagnostics::hot_spot_workspace<Vector> hot_work_;
     double centre_y_[2];
-    // The whole body's share of the library's sums: the 3-D run's quarter is a quarter of it
-    // (the axisymmetric sums are the whole body's already, the plane's per metre of depth).
-    static constexpr double quarters_ = dim == 3 ? 4.0 : 1.0;
+    // The whole body's share of the library's sums: the 3-D cylinders' quarter is a quarter of it
+    // (the axisymmetric sums are the whole body's already, the plane's per metre of depth, the
+    // 3-D array's per pore's cell).
+    [[nodiscard]] double quarters() const { return dim == 3 && s_.free_side() ? 4.0 : 1.0; }
 };
 using monitor = monitor_of<S::vector>;
 

@@ -382,7 +382,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                     ? (s.free_side() ? "axisymmetric, spherical pore radius"
                                      : "axisymmetric, side held (the array's cell), spherical pore radius")
                 : s.free_side() ? "3-D (a quarter of the cylinders), spherical pore radius"
-                                : "3-D (a quarter of the square array's cell), spherical pore radius",
+                                : "3-D (the square array's cell), spherical pore radius",
                 s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
                 sol.particles().size(),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
@@ -414,7 +414,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     auto write_snapshot = [&](const auto& so) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", at.snapshot);
-        example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from);
+        example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from, axis_coordinate(s));
         pvd->write(vtp, so);
         const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
         times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';

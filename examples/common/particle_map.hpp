@@ -31,7 +31,8 @@ namespace example {
 // The whole map is held as text until it is written: about 160 bytes a particle.
 // From `parallel_from` particles the rows are formatted on the solver's threads.
 template <class Solver>
-void write_particle_map(const std::filesystem::path& file, const Solver& sol, std::size_t parallel_from) {
+void write_particle_map(const std::filesystem::path& file, const Solver& sol, std::size_t parallel_from,
+                        double section_y = 0) {
     const auto& ps = sol.particles();
     const std::size_t n = ps.size();
     const int threads = sol.threads();
@@ -52,15 +53,14 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
             };
             const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
             t.reserve((last - first) * 160);
-            // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = 0 (the particles whose
-            // domains reach it, the first layer of a quarter whose symmetry plane it is), in x and
-            // z, with F's (x, z) block.
+            // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = section_y (the particles
+            // whose domains reach it), in x and z, with F's (x, z) block.
             constexpr int up = Solver::dim - 1;
             for (std::size_t i = first; i < last; ++i) {
                 const auto p = ps[i];
                 const auto& x = p.template get<gimlet::fields::position>();
                 if constexpr (Solver::dim == 3)
-                    if (!(std::abs(x[1]) <= p.template get<gimlet::fields::domain_half_width>()[1])) continue;
+                    if (!(std::abs(x[1] - section_y) <= p.template get<gimlet::fields::domain_half_width>()[1])) continue;
                 put(double(x[0] * 1e3), ',');
                 put(double(x[up] * 1e3), ',');
                 put(double(gimlet::mean_pressure(p) * 1e-6), ',');

@@ -123,30 +123,33 @@ TEST_CASE("axisymmetric solver: a uniform stress sigma_rr = sigma_thetatheta = s
     }
 }
 
-TEST_CASE("axisymmetric solver: the axis holds v_r = 0, and a ring that reaches it stops the run by name",
+TEST_CASE("axisymmetric solver: the axis holds v_r = 0, and rings driven onto it at 2 km/s approach it without "
+          "crossing",
           "[solver][axisymmetric]") {
+    // Every ring of a cylinder moves to the axis at 2 km/s. The nodes on the axis are held; a
+    // ring's domain midpoint moves with the plain shape's interpolation, with the nodes beyond
+    // the axis the mirror images of those inside (v_r odd), so a ring near the axis moves in as
+    // its own radius shrinks and never crosses (with the r-weighted interpolation a ring moved
+    // with its centroid, 4/3 as fast as its midpoint beside the axis, and crossed at step 4).
+    // The squeezed material leaves along z; 300 steps (some 25 us) are checked.
     const double radius = 0.004, height = 0.004, h = 1e-3;
-    const auto sc = cylinder(radius, height, h, 2);
+    const auto sc = cylinder(radius, height, h, 2, 40);
     axi_solver sol(sc, {});
     auto& p = sol.particles();
     for (std::size_t i = 0; i < p.size(); ++i) p.column<gimlet::fields::velocity>()[i] = A::vector(-2000.0, 0.0);
-    // Every ring moves to the axis at 2 km/s: the nodes on it are held, the rings near it are
-    // crushed or cross it, and the run stops naming one.
-    bool stopped = false;
-    try {
-        for (int s = 0; s < 2000 && !stopped; ++s) {
-            sol.step();
-            const auto& g = sol.background_grid();
-            for (std::size_t n = 0; n < g.size(); ++n)
-                if (g.node_position(n)[0] <= 0) REQUIRE(g.velocity[n][0] == 0.0);
+    double closest = radius;
+    for (int s = 0; s < 300; ++s) {
+        sol.step();
+        const auto& g = sol.background_grid();
+        for (std::size_t n = 0; n < g.size(); ++n)
+            if (g.node_position(n)[0] <= 0) REQUIRE(g.velocity[n][0] == 0.0);
+        for (const auto& x : p.column<gimlet::fields::position>()) {
+            REQUIRE(x[0] > 0);
+            closest = std::min(closest, x[0]);
         }
-    } catch (const gimlet::numerical_error& e) {
-        stopped = true;
-        const std::string what = e.what();
-        INFO(what);
-        CHECK(what.find("reached the axis of symmetry") != std::string::npos);
     }
-    CHECK(stopped);
+    INFO("closest ring to the axis: r = " << closest);
+    CHECK(closest < 0.05 * h);  // they did go close: the check can tell
 }
 
 TEST_CASE("axisymmetric solver: what it cannot do is refused by name", "[solver][axisymmetric][errors]") {
@@ -206,10 +209,11 @@ TEST_CASE("axisymmetric solver: an elastic cylinder under a slow axial strain co
     // smoothly over 25 transit times of the height and held for 5 (50 transits: the same to
     // 0.01 %).
     //
-    // A particle is a ring over [r_p - l, r_p + l] and moves with its mass-weighted mean velocity
-    // (the r-weighted weights): under u_r = c r it moves by c r_c, r_c = r_p + l^2 / (3 r_p) its
-    // ring's centroid (1.33 r_p for the first ring at h/4 from the axis, 1.0013 r_p at 4 mm).
-    // So the exact displacement a ring has is u_r(r_c).
+    // A particle is a ring over [r_p - l, r_p + l]; its position is the domain's midpoint, which
+    // moves with the plain shape's interpolation, a linear field's value at r_p: under u_r = c r
+    // it moves by c r_p. (The r-weighted interpolation gives the ring's mass-weighted mean
+    // velocity, c r_c with r_c = r_p + l^2 / (3 r_p): 1.33 r_p for the first ring, h/4 from the
+    // axis, 1.0013 r_p at 4 mm; against r_c the rings read 1.04 % off here.)
     const double radius = 0.008, height = 0.032, h = 1e-3, rho = 1000, young = 1e9, nu = 0.3, eps = -1e-3;
     const int ppc = 2;
     const double l = h / (2 * ppc);
@@ -255,20 +259,20 @@ TEST_CASE("axisymmetric solver: an elastic cylinder under a slow axial strain co
             sz += z, su += u, szz += z * z, szu += z * u, n += 1;
         }
     const double eps_z = (n * szu - sz * su) / (n * szz - sz * sz), u0 = (su - eps_z * sz) / n;
-    double worst_r = 0, worst_z = 0, worst_mid = 0;
+    double worst_r = 0, worst_z = 0, worst_centroid = 0;
     A::vector worst_at = A::vector::Zero();
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (!middle(i)) continue;
         const double r = x0[i][0], rc = r + l * l / (3 * r);
-        const double er = std::abs((x[i][0] - r) + nu * eps_z * rc) / (nu * std::abs(eps_z) * radius);
+        const double er = std::abs((x[i][0] - r) + nu * eps_z * r) / (nu * std::abs(eps_z) * radius);
         if (er > worst_r) worst_at = x0[i];
         worst_r = std::max(worst_r, er);
-        worst_mid = std::max(worst_mid, std::abs((x[i][0] - r) + nu * eps_z * r) / (nu * std::abs(eps_z) * radius));
+        worst_centroid = std::max(worst_centroid, std::abs((x[i][0] - r) + nu * eps_z * rc) / (nu * std::abs(eps_z) * radius));
         worst_z = std::max(worst_z, std::abs((x[i][1] - x0[i][1]) - (u0 + eps_z * x0[i][1])) / (std::abs(eps_z) * height));
     }
     INFO("eps_z " << eps_z << " (" << eps_z / eps << " of the imposed shortening over H); over " << n
-                  << " rings, largest |u_r(ring) + nu eps_z r_c| / (nu |eps_z| R) = " << worst_r << " (ring at r, z = " << worst_at.transpose() * 1e3 << " mm)"
-                  << " (at the ring's midpoint r_p: " << worst_mid << "), |u_z - eps_z z - u_0| / (|eps_z| H) = " << worst_z);
+                  << " rings, largest |u_r(ring) + nu eps_z r_p| / (nu |eps_z| R) = " << worst_r << " (ring at r, z = " << worst_at.transpose() * 1e3 << " mm)"
+                  << " (against r_c: " << worst_centroid << "), |u_z - eps_z z - u_0| / (|eps_z| H) = " << worst_z);
     CHECK(eps_z / eps > 1);  // the driven layer's nodes lengthen nothing
     CHECK(eps_z / eps < 1.05);
     CHECK(worst_r < 0.005);

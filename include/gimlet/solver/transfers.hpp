@@ -291,7 +291,22 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
             dv += change;
             v_pic += change;
         }
-        x[i] += dt * v_pic;
+        if constexpr (axisymmetric) {
+            // A ring's domain midpoint moves with the plain shape's interpolation (a linear
+            // field's value at r_p; the r-weighted one would move it with its ring's centroid, and
+            // a ring converging on the axis would reach it before its hoop stretch stopped it:
+            // docs/equations.md, "Axisymmetric GIMP").
+            vector u = change;
+            auto at_position = entries(i);
+            st.for_each_position([&](std::size_t node, real cr, real cz) {
+                const vector& vi = grid_.velocity[at_position(node)];
+                u[0] += cr * vi[0];
+                u[1] += cz * vi[1];
+            });
+            x[i] += dt * u;
+        } else {
+            x[i] += dt * v_pic;
+        }
         const vector v_flip = v[i] + dv;
         if (!damping) {
             v[i] = v_flip;

@@ -10,6 +10,7 @@
 #include "gimlet/core/radial_factors.hpp"
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <type_traits>
 
@@ -23,6 +24,17 @@ namespace gimlet::detail {
 /// Nothing: the hoop factors of a stencil outside an axisymmetric space.
 struct no_hoop {};
 
+/// An axisymmetric stencil's factors along r beyond the weights: the hoop factor T^r of each
+/// node (1/m), and the coefficients of the particle's position velocity, the plain (not
+/// r-weighted) shape's weights with the nodes beyond the axis folded onto their mirror images
+/// (v_r odd, v_z even across the axis).
+template <class Real, int W>
+struct axis_factors {
+    std::array<Real, W> hoop;   ///< T^r
+    std::array<Real, W> pos_r;  ///< the radial velocity's coefficient
+    std::array<Real, W> pos_z;  ///< the axial velocity's coefficient
+};
+
 /// \tparam S the space, \tparam W the nodes per axis of the shape function.
 template <Space S, int W>
 struct stencil {
@@ -35,8 +47,9 @@ struct stencil {
     std::array<std::array<real, W>, dim> dw;     ///< 1-D derivatives (1/m)
     std::array<real, dim> local;                 ///< particle position from the first node (cells)
     int first_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
-    /// Axisymmetric space: the radial hoop factor T^r of each node along r (1/m); T_ip = T^r S^z.
-    [[no_unique_address]] std::conditional_t<is_axisymmetric_v<S>, std::array<real, W>, no_hoop> hoop;
+    /// Axisymmetric space: the radial hoop factor T^r of each node along r (1/m), T_ip = T^r S^z,
+    /// and the position velocity's coefficients (axis_factors, for_each_position).
+    [[no_unique_address]] std::conditional_t<is_axisymmetric_v<S>, axis_factors<real, W>, no_hoop> axis;
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>
@@ -49,7 +62,25 @@ struct stencil {
             int first = 0;
             shape::axisymmetric_form<Shape>::radial(x[0], half_width[0] * h, h, first, f);
             finish_axis(g, 0, x[0] * g.inv_cell(), first);
-            for (int a = 0; a < W; ++a) w[0][a] = f[a].weight, dw[0][a] = f[a].gradient, hoop[a] = f[a].hoop;
+            for (int a = 0; a < W; ++a) w[0][a] = f[a].weight, dw[0][a] = f[a].gradient, axis.hoop[a] = f[a].hoop;
+            // The domain's midpoint moves with the plain shape's interpolation, which gives a
+            // linear field's value at r_p; the nodes beyond the axis carry their mirror images'
+            // velocities (docs/equations.md, "Axisymmetric GIMP").
+            std::array<real, W> plain, slope;
+            int plain_first = 0;
+            Shape::weights(x[0] / h, half_width[0], plain_first, plain.data(), slope.data());
+            assert(plain_first == first);  // both locate r_p / h
+            for (int a = 0; a < W; ++a) {
+                const bool beyond = first + a < 0;
+                axis.pos_r[a] = beyond ? real(0) : plain[a];
+                axis.pos_z[a] = beyond ? real(0) : plain[a];
+            }
+            for (int a = 0; a < W; ++a)
+                if (first + a < 0) {
+                    const int mirror = -(first + a) - first;  // node -k's place in the stencil
+                    axis.pos_r[mirror] -= plain[a];
+                    axis.pos_z[mirror] += plain[a];
+                }
             const real zc = (x[1] - g.spec().lower[1]) * g.inv_cell();
             int first_z = 0;
             Shape::weights(zc, half_width[1], first_z, w[1].data(), dw[1].data());
@@ -143,8 +174,20 @@ struct stencil {
         for (int b = 0; b < W; ++b)
             for (int a = 0; a < W; ++a) {
                 const vector g(dw[0][a] * w[1][b], w[0][a] * dw[1][b]);
-                f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b], g, hoop[a] * w[1][b]);
+                f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), w[0][a] * w[1][b], g, axis.hoop[a] * w[1][b]);
             }
+    }
+
+    /// Axisymmetric space: call f(node, cr, cz) for every node of the stencil, in for_each's
+    /// order, where the particle's position moves with sum (cr v_ir, cz v_iz): the domain's
+    /// midpoint's velocity (axis_factors).
+    template <class F>
+    void for_each_position(F&& f) const
+        requires(is_axisymmetric_v<S>)
+    {
+        for (int b = 0; b < W; ++b)
+            for (int a = 0; a < W; ++a)
+                f(static_cast<std::size_t>(offset[0][a] + offset[1][b]), axis.pos_r[a] * w[1][b], axis.pos_z[a] * w[1][b]);
     }
 
     /// Call f(node, weight, gradient) for every node of the stencil.
