@@ -175,6 +175,12 @@ TEST_CASE("axisymmetric solver: what it cannot do is refused by name", "[solver]
         opt.body_force = A::vector(0.0, -9.81);
         CHECK_NOTHROW(axi_solver(sc, opt));
     }
+    SECTION("a body reaching across the axis") {
+        gimlet::scene::scene<A, gimlet::elastic_material> across(sc.grid());
+        across.add_body(gimlet::scene::box<A>(A::vector(-h, 0.0), A::vector(0.004, 0.004)),
+                        gimlet::make_elastic_material(1000.0, 1e9, 0.3), A::vector::Zero(), 2, "across");
+        CHECK_THROWS_WITH(axi_solver(across, {}), Catch::Contains("extent of across") && Catch::Contains("inside the grid [0"));
+    }
     SECTION("a ring moved onto the axis between steps") {
         axi_solver sol(sc, {});
         sol.particles().column<gimlet::fields::position>()[5][0] = 0.0;

@@ -27,6 +27,7 @@ struct axisymmetric_form;
 /// uGIMP's: the r-weighted average over the particle's domain, clipped at the axis.
 template <>
 struct axisymmetric_form<ugimp> {
+    /// The factors of the stencil's nodes along r (the primary template's `radial`).
     template <class Real>
     static void radial(Real r_p, Real half, Real h, int& first,
                        std::array<radial_factors<Real>, ugimp::stencil>& f) noexcept {
@@ -37,6 +38,7 @@ struct axisymmetric_form<ugimp> {
 /// Linear MPM's: the point particle's S = N_i(r_p), G = N_i'(r_p), T = N_i(r_p) / r_p.
 template <>
 struct axisymmetric_form<linear> {
+    /// The factors of the stencil's nodes along r (the primary template's `radial`).
     template <class Real>
     static void radial(Real r_p, Real /*half*/, Real h, int& first,
                        std::array<radial_factors<Real>, linear::stencil>& f) noexcept {
