@@ -53,14 +53,15 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
             };
             const std::size_t first = std::min(n, std::size_t(b) * size), last = std::min(n, first + size);
             t.reserve((last - first) * 160);
-            // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = section_y (the particles
-            // whose domains reach it), in x and z, with F's (x, z) block.
+            // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = section_y, the particles
+            // within a spacing of it (the layer on each side of a plane between two layers, the
+            // first layer beside a symmetry plane), in x and z, with F's (x, z) block.
             constexpr int up = Solver::dim - 1;
             for (std::size_t i = first; i < last; ++i) {
                 const auto p = ps[i];
                 const auto& x = p.template get<gimlet::fields::position>();
                 if constexpr (Solver::dim == 3)
-                    if (!(std::abs(x[1] - section_y) <= p.template get<gimlet::fields::domain_half_width>()[1])) continue;
+                    if (!(std::abs(x[1] - section_y) < 2 * p.template get<gimlet::fields::domain_half_width>()[1])) continue;
                 put(double(x[0] * 1e3), ',');
                 put(double(x[up] * 1e3), ',');
                 put(double(gimlet::mean_pressure(p) * 1e-6), ',');
