@@ -234,16 +234,17 @@ inline void validate(const settings& s) {
     gimlet::require(s.threads >= 0, "threads", s.threads, ">= 0 (0 = OpenMP default)");
     if (s.geometry != geometry_kind::plane) {
         // The axisymmetric and 3-D runs are built with the multi-field laws only (one solver
-        // each); the filters are derived for plane cells (and refused for rings by the solver).
+        // each); the axisymmetric solver refuses the filters (not derived for rings).
         const std::string g = "--geometry " + name_of(s.geometry);
         if (s.contact == contact_kind::single)
             throw gimlet::invalid_parameter("--contact with " + g, "single",
                                             "distance or bardenhagen (the " + name_of(s.geometry) +
                                                 " run is built with the multi-field laws only)");
-        if (s.volume_filter || s.volumetric_average)
+        if (s.geometry == geometry_kind::axisymmetric && (s.volume_filter || s.volumetric_average))
             throw gimlet::invalid_parameter(
                 std::string(s.volume_filter ? "--volume-filter" : "--volumetric-average") + " with " + g, "on",
-                "off (the filters are derived for plane-strain cells)");
+                "off (the filters average over cells of the (r, z) plane, which are rings of different volumes: "
+                "not derived for them)");
     }
     if (s.side != settings::side_kind::automatic && s.geometry == geometry_kind::plane)
         throw gimlet::invalid_parameter("--side with --geometry plane", s.free_side() ? "free" : "array",
@@ -396,15 +397,16 @@ template <class Vector>
 struct sample_of {
     double time = 0;
     double D = 0;  // m: half the gap between the impact surfaces on the cavities' axis (>= 0)
-    double kinetic = 0, internal = 0;  // J per metre of depth
+    double kinetic = 0, internal = 0;  // J per metre of depth in the plane run, J for the others
     double max_temperature = 0, hot_spot = 0;  // K
-    double max_eta = 0;  // the largest particle compression 1 - det F
-    // The hot spot's disc: its centre, and its mass-weighted mean compression 1 - det F (-1
+    double max_eta = 0;  // the largest particle compression 1 - J (J = det F, times F_thetatheta for a ring)
+    // The hot spot's disc: its centre, and its mass-weighted mean compression 1 - J (-1
     // where the search named no disc).
     Vector hot_spot_centre = Vector::Zero();
     double hot_spot_eta = -1;
     // The material hotter than the bulk shock temperature T_EP(v) by each of hot_excess (K):
-    // mass (kg per metre of depth) and area (m^2).
+    // mass (kg per metre of depth in the plane run, kg for the others) and area (m^2; the others
+    // the volume, m^3).
     std::array<double, hot_levels> hot_mass{}, hot_area{};
     cavity_state cavity[2];
     [[nodiscard]] double wall_relative_velocity() const {
@@ -461,7 +463,7 @@ public:
     // The largest 1 - J (J = det F, times the hoop stretch for a ring) over the particles, and 0 (NaN never taken), on the solver's
     // threads from parallel_from particles. Each thread folds std::max over its particles, and
     // OpenMP joins the threads' maxima with the 0 the loop starts from: a maximum does not
-    // depend on how the particles are shared, and 1 - det F is never -0, so the bits are the
+    // depend on how the particles are shared, and 1 - J is never -0, so the bits are the
     // serial loop's whatever the thread count. It runs every step: one thread over every
     // particle would be a serial part of each step (docs/performance.md).
     template <class Solver>
@@ -615,9 +617,9 @@ struct summary {
     double max_wall_relative_velocity = 0;  // m/s
     double max_upstream_speed = 0;          // m/s: the paper's jet speed, its largest
     double max_hot_spot = 0, max_temperature = 0;  // K
-    double max_eta = 0;  // the largest particle compression 1 - det F at any step (tracked every step)
+    double max_eta = 0;  // the largest particle compression 1 - J at any step (tracked every step)
     double t_hot_spot = -1;
-    // The hot spot's disc at its peak: its mass-weighted mean compression 1 - det F (-1: none).
+    // The hot spot's disc at its peak: its mass-weighted mean compression 1 - J (-1: none).
     // Beside it in summary.csv, the Rankine-Hugoniot eta of a planar symmetric landing at half
     // the largest relative wall velocity (landing_eta): a reference, not a bound, since the jet
     // lands on material already shocked.

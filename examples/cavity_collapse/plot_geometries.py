@@ -50,8 +50,8 @@ def main(argv):
         rows, summary = read(directory)
         t = column(rows, "time_after_contact_us")
         diameter = 2 * float(summary["radius_mm"])
-        closed = [r["lower_cavity_open"] == "1" for r in rows]
-        ratio = [float(r["lower_axial_chord_mm"]) / diameter if c else 0.0 for r, c in zip(rows, closed)]
+        is_open = [r["lower_cavity_open"] == "1" for r in rows]
+        ratio = [float(r["lower_axial_chord_mm"]) / diameter if o else 0.0 for r, o in zip(rows, is_open)]
         (line,) = chord.plot(t, ratio, label=label)
         jet.plot(t, column(rows, "lower_upstream_wall_speed_m_s"), color=line.get_color(), label=label)
         name = hot_column(rows)

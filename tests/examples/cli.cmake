@@ -105,4 +105,8 @@ gimlet_cli_case(cavity_collapse cfl_text       "--cfl 0.4x"       "--cfl = 0.4x 
 # a Courant number above 1/sqrt(5), by name.
 gimlet_cli_case(cavity_collapse cfl_consistent "--cfl 0.45"       "cfl (Courant number, with consistent_mass_iterations = 4) = 0.45 is invalid")
 gimlet_cli_case(cavity_collapse unknown_flag   "--time-us 5"       "unknown flag --time-us")
+gimlet_cli_case(cavity_collapse geometry_unknown "--geometry sphere" "--geometry = sphere is invalid; valid: plane|axisymmetric|3d")
+gimlet_cli_case(cavity_collapse side_plane     "--side free"       "--side with --geometry plane = free is invalid")
+gimlet_cli_case(cavity_collapse geometry_single "--geometry 3d --contact single" "--contact with --geometry 3d = single is invalid")
+gimlet_cli_case(cavity_collapse axisymmetric_filter "--geometry axisymmetric --consistent-mass 1 --volume-filter on" "--volume-filter with --geometry axisymmetric = on is invalid")
 gimlet_cli_case(cavity_collapse output_under_file "--output a_file/out" "--output = a_file/out is invalid; valid: a directory that can be created and written")

@@ -305,9 +305,11 @@ public:
             const boundary b = spec_.bc[d];
             if (b != boundary::slip && b != boundary::fixed && !(b == boundary::wall && one_sided)) continue;
             const real mu = real(spec_.wall_friction[d]);
-            // Storage index s holds node k = s - offset_d; k <= 0 and k >= N are wall nodes.
+            // Storage index s holds node k = s - offset_d; k <= 0 and k >= N are wall nodes. In an
+            // axisymmetric space the low end of r is the axis (hold_axis), not a wall.
             const int low_last = offset_[d], high_first = offset_[d] + cells_[d];
-            for (int s = 0; s < nodes_[d]; s = s == low_last ? high_first : s + 1) {
+            const bool axis_side = is_axisymmetric_v<S> && d == 0;
+            for (int s = axis_side ? high_first : 0; s < nodes_[d]; s = s == low_last ? high_first : s + 1) {
                 const real into = s <= low_last ? real(-1) : real(1);  // the wall's side, along +d
                 for_each_in_plane(d, s, [&](std::size_t n) {
                     for (std::size_t f = 0; f < fields_; ++f) {

@@ -10,6 +10,7 @@
 #include "gimlet/core/space.hpp"
 
 #include <cstddef>
+#include <numbers>
 #include <type_traits>
 #include <utility>
 
@@ -22,7 +23,7 @@ namespace detail {
 template <class Solver, class T>
 [[nodiscard]] T whole_body(T sum) {
     using store_type = std::remove_cvref_t<decltype(std::declval<const Solver&>().particles())>;
-    if constexpr (is_axisymmetric_v<typename store_type::space_type>) return 2 * 3.14159265358979323846 * sum;
+    if constexpr (is_axisymmetric_v<typename store_type::space_type>) return 2 * std::numbers::pi * sum;
     else return sum;
 }
 }  // namespace detail
@@ -69,20 +70,21 @@ template <class Solver>
     return detail::whole_body<Solver>(u);
 }
 
-/// One sample of the conserved quantities.
+/// One sample of the conserved quantities (per unit thickness in plane strain; the whole body's
+/// in an axisymmetric space).
 template <int Dim>
 struct conservation_sample {
     /// Simulated time (s).
     double time = 0;
-    /// Total mass (kg; per unit thickness in 2-D): total_mass().
+    /// Total mass (kg): total_mass().
     double mass = 0;
-    /// Linear momentum (kg m/s; per unit thickness in 2-D): linear_momentum().
+    /// Linear momentum (kg m/s): linear_momentum().
     Eigen::Matrix<double, Dim, 1> momentum = Eigen::Matrix<double, Dim, 1>::Zero();
-    /// Kinetic energy (J; per unit thickness in 2-D): kinetic_energy().
+    /// Kinetic energy (J): kinetic_energy().
     double kinetic = 0;
-    /// Internal energy (J; per unit thickness in 2-D): internal_energy().
+    /// Internal energy (J): internal_energy().
     double internal = 0;
-    /// kinetic + internal (J; per unit thickness in 2-D).
+    /// kinetic + internal (J).
     [[nodiscard]] double total_energy() const { return kinetic + internal; }
 };
 

@@ -514,7 +514,7 @@ private:
     stages::consistent_mass<S, stencil_type::nodes> consistent_mass_;
     stages::volume_filter<S> volume_filter_;
     stages::volumetric_average<S> volumetric_average_;
-    [[no_unique_address]] std::conditional_t<has_driven_particles, stages::driven_particles<S>, detail::no_hoop> driven_;
+    [[no_unique_address]] std::conditional_t<has_driven_particles, stages::driven_particles<S>, detail::nothing> driven_;
 
     // The step's own state: the clock, the counters, the checks between steps.
     real time_ = 0;

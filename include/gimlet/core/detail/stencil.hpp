@@ -21,8 +21,9 @@ struct axisymmetric_form;  // shape/axisymmetric.hpp
 
 namespace gimlet::detail {
 
-/// Nothing: the hoop factors of a stencil outside an axisymmetric space.
-struct no_hoop {};
+/// Nothing: a member a configuration does without (the axis factors outside an axisymmetric
+/// space, a stage that is compiled out).
+struct nothing {};
 
 /// An axisymmetric stencil's factors along r beyond the weights: the hoop factor T^r of each
 /// node (1/m), and the coefficients of the particle's position velocity, the plain (not
@@ -49,7 +50,7 @@ struct stencil {
     int first_row = 0;  ///< storage index of the first node along the last axis (the solver's slab)
     /// Axisymmetric space: the radial hoop factor T^r of each node along r (1/m), T_ip = T^r S^z,
     /// and the position velocity's coefficients (axis_factors, for_each_position).
-    [[no_unique_address]] std::conditional_t<is_axisymmetric_v<S>, axis_factors<real, W>, no_hoop> axis;
+    [[no_unique_address]] std::conditional_t<is_axisymmetric_v<S>, axis_factors<real, W>, nothing> axis;
 
     /// \param x particle position (m); \param half_width per axis, in cell units.
     template <class Shape>

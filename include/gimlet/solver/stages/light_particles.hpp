@@ -134,6 +134,9 @@ public:
                     if (w > 0) densest = std::max(densest, node_reference_density_[e]);
                 });
                 lightness_[q] = reference_density(particles, q) < theta * densest ? lightness::light : lightness::none;
+                // A driven particle moves as it is told (stages::driven_particles), never as a light one.
+                if constexpr (Core::has_driven_particles)
+                    if (particles.template column<fields::driven>()[q]) lightness_[q] = lightness::none;
             }
         for (std::size_t q = 0; q < particles.size(); ++q)
             if (lightness_[q] != lightness::none) list_.push_back(q);
