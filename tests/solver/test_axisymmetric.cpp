@@ -381,3 +381,26 @@ TEST_CASE("driven particles: a flag beyond the space's axes is refused by name, 
     p.column<gimlet::fields::driven>()[3] = 0b100;
     CHECK_THROWS_WITH(sol.step(), Catch::Contains("driven") && Catch::Contains("0 to 3"));
 }
+
+TEST_CASE("axisymmetric grid: the boundary along r acts at the outer radius, the axis holds v_r = 0 alone",
+          "[solver][axisymmetric]") {
+    const double h = 1e-3;
+    for (const auto bc : {gimlet::boundary::fixed, gimlet::boundary::slip, gimlet::boundary::free}) {
+        gimlet::grid_spec<A> gs;
+        gs.lower = A::vector(0.0, 0.0);
+        gs.upper = A::vector(4 * h, 4 * h);
+        gs.cell = h;
+        gs.bc = {bc, gimlet::boundary::free};
+        gimlet::grid<A> g(gs, gimlet::shape::ugimp::stencil);
+        std::vector<A::vector> v(g.entries(), A::vector(1.0, 2.0));
+        g.apply_walls(v);
+        for (std::size_t n = 0; n < g.size(); ++n) {
+            const double r = g.node_position(n)[0];
+            INFO("boundary " << int(bc) << ", node at r = " << r);
+            if (r <= 0) CHECK(v[n] == A::vector(0.0, 2.0));  // the axis (and beyond): v_r only
+            else if (r >= 4 * h && bc == gimlet::boundary::fixed) CHECK(v[n] == A::vector(0.0, 0.0));
+            else if (r >= 4 * h && bc == gimlet::boundary::slip) CHECK(v[n] == A::vector(0.0, 2.0));
+            else CHECK(v[n] == A::vector(1.0, 2.0));
+        }
+    }
+}
