@@ -404,3 +404,35 @@ TEST_CASE("axisymmetric grid: the boundary along r acts at the outer radius, the
         }
     }
 }
+
+TEST_CASE("axisymmetric solver: light rings beside the axis move by their midpoints too, and do not cross it",
+          "[solver][axisymmetric]") {
+    // A core of foam (10 kg/m^3, r < 1 mm) inside a shell of 1000 kg/m^3, all moving to the axis at
+    // 2 km/s: the foam's rings that share nodes with the shell are light
+    // (solver_options::light_particle_ratio) and move by the light treatment, whose position
+    // update follows the midpoint rule with the nodes' reliabilities as weights, the axis nodes'
+    // v_r = 0 counted as reliable (counted by their own foam mass, a ring 0.25 mm from the axis
+    // moved with the shell's 2 km/s and crossed it at step 2).
+    const double h = 1e-3;
+    gimlet::grid_spec<A> gs;
+    gs.lower = A::vector(0.0, -40 * h);
+    gs.upper = A::vector(7 * h, 44 * h);
+    gs.cell = h;
+    gimlet::scene::scene<A, gimlet::elastic_material> sc(gs);
+    sc.add_body(gimlet::scene::box<A>(A::vector(0.0, 0.0), A::vector(h, 4 * h)),
+                gimlet::make_elastic_material(10.0, 1e7, 0.3), A::vector(-2000.0, 0.0), 2, "foam");
+    sc.add_body(gimlet::scene::box<A>(A::vector(h, 0.0), A::vector(4 * h, 4 * h)),
+                gimlet::make_elastic_material(1000.0, 1e9, 0.3), A::vector(-2000.0, 0.0), 2, "shell");
+    axi_solver sol(sc, {});
+    std::size_t most_light = 0;
+    double closest = h;
+    for (int s = 0; s < 200; ++s) {
+        sol.step();
+        most_light = std::max(most_light, sol.light_particles());
+        for (const auto& x : sol.particles().column<gimlet::fields::position>()) closest = std::min(closest, x[0]);
+    }
+    INFO("light rings at most " << most_light << ", closest to the axis r = " << closest);
+    CHECK(most_light > 0);
+    CHECK(closest > 0);
+    CHECK(closest < 0.1 * h);
+}

@@ -248,7 +248,33 @@ public:
                 const std::size_t e = at_share(node);
                 light_momentum_[e] += D * (w * heavy_mass(e) / heavy_sum);
             });
-            x[p] += dt * v_read;
+            if constexpr (is_axisymmetric_v<S>) {
+                // A ring's midpoint moves with the plain shape's interpolation (the nodes beyond
+                // the axis mirrored: stencil::for_each_position), weighted by the same
+                // reliabilities, the main pass's rule where every k_i is the same. The axis nodes'
+                // v_r = 0 is a condition, not a mass's estimate: it counts as the most reliable
+                // node's, or a light ring beside the axis would move with the shell's velocity
+                // across it.
+                real k_top = 0;
+                auto at_top = c.entries(p);
+                c.stencils_[p].for_each([&](std::size_t node, real, const vector&) {
+                    k_top = std::max(k_top, reliability(c, at_top(node)));
+                });
+                vector u = vector::Zero(), k_plain = vector::Zero();
+                auto at_position = c.entries(p);
+                c.stencils_[p].for_each_position([&](std::size_t node, real cr, real cz) {
+                    const std::size_t e = at_position(node);
+                    const real k = reliability(c, e);
+                    const real kr = grid.node_position(e % grid.size())[0] <= 0 ? k_top : k;
+                    u[0] += cr * kr * grid.velocity[e][0];
+                    u[1] += cz * k * grid.velocity[e][1];
+                    k_plain[0] += cz * kr;
+                    k_plain[1] += cz * k;
+                });
+                for (int d = 0; d < 2; ++d) x[p][d] += dt * (k_plain[d] > 0 ? u[d] / k_plain[d] : v_read[d]);
+            } else {
+                x[p] += dt * v_read;
+            }
             v[p] = v_read;
         }
     }
