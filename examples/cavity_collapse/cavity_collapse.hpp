@@ -252,33 +252,46 @@ inline void validate(const settings& s) {
                                         "run's blocks are periodic)");
 }
 
+// Room for the free ends: the blocks rebound from each other at up to about v, so a long run
+// needs more than a short one (a particle leaving the grid stops the run).
+inline double grid_margin(const settings& s) { return s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell); }
+
+// The two blocks of every geometry: `lower` and `upper` (regions of the scene's space), each less
+// its cavity or pore (a ball of the cavity radius at `c0`, `c1`) where R > 0, moving towards each
+// other at v along the last axis; HMX with the flags' viscosity and temperature.
+template <class Sp, class M, class Lower, class Upper>
+void add_blocks(gimlet::scene::scene<Sp, M>& scene, const settings& s, const Lower& lower, const Upper& upper,
+                const typename Sp::vector& c0, const typename Sp::vector& c1) {
+    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
+        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
+    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
+        hmx.thermal.use_paper(s.paper_temperature);
+    typename Sp::vector up = Sp::vector::Zero(), down = Sp::vector::Zero();
+    up[Sp::dim - 1] = s.velocity;
+    down[Sp::dim - 1] = -s.velocity;
+    if (s.radius > 0) {
+        using gimlet::scene::ball, gimlet::scene::difference;
+        scene.add_body(difference(lower, ball<Sp>(c0, s.radius)), hmx, up, 2, "lower block");
+        scene.add_body(difference(upper, ball<Sp>(c1, s.radius)), hmx, down, 2, "upper block");
+    } else {
+        scene.add_body(lower, hmx, up, 2, "lower block");
+        scene.add_body(upper, hmx, down, 2, "upper block");
+    }
+}
+
 template <class M = material>
 gimlet::scene::scene<S, M> make_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S> gs;
-    // Room for the free ends: the blocks rebound from each other at up to about v, so a long
-    // run needs more than a short one (a particle leaving the grid stops the run).
-    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
+    const double margin = grid_margin(s);
     gs.lower = S::vector(0.0, -margin);
     gs.upper = S::vector(width, 2 * height + gap + margin);
     gs.cell = s.cell;
     gs.bc = {gimlet::boundary::periodic, gimlet::boundary::free};
     gimlet::scene::scene<S, M> scene(gs);
-    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
-        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
-    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
-        hmx.thermal.use_paper(s.paper_temperature);
-    const gimlet::scene::box<S> lower(S::vector(0.0, 0.0), S::vector(width, height));
-    const gimlet::scene::box<S> upper(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap));
-    const S::vector up(0.0, s.velocity), down(0.0, -s.velocity);
-    if (s.radius > 0) {
-        using gimlet::scene::ball, gimlet::scene::difference;
-        scene.add_body(difference(lower, ball<S>(cavity_centre(0), s.radius)), hmx, up, 2, "lower block");
-        scene.add_body(difference(upper, ball<S>(cavity_centre(1), s.radius)), hmx, down, 2, "upper block");
-    } else {
-        scene.add_body(lower, hmx, up, 2, "lower block");
-        scene.add_body(upper, hmx, down, 2, "upper block");
-    }
+    add_blocks(scene, s, gimlet::scene::box<S>(S::vector(0.0, 0.0), S::vector(width, height)),
+               gimlet::scene::box<S>(S::vector(0.0, height + gap), S::vector(width, 2 * height + gap)),
+               cavity_centre(0), cavity_centre(1));
     return scene;
 }
 
@@ -290,28 +303,15 @@ template <class M = material>
 gimlet::scene::scene<A, M> make_axisymmetric_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<A> gs;
-    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
+    const double margin = grid_margin(s);
     gs.lower = A::vector(0.0, -margin);
     gs.upper = A::vector(0.5 * width + (s.free_side() ? margin : 0.0), 2 * height + gap + margin);
     gs.cell = s.cell;
     gs.bc = {s.free_side() ? gimlet::boundary::free : gimlet::boundary::slip, gimlet::boundary::free};
     gimlet::scene::scene<A, M> scene(gs);
-    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
-        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
-    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
-        hmx.thermal.use_paper(s.paper_temperature);
-    const gimlet::scene::box<A> lower(A::vector(0.0, 0.0), A::vector(0.5 * width, height));
-    const gimlet::scene::box<A> upper(A::vector(0.0, height + gap), A::vector(0.5 * width, 2 * height + gap));
-    const A::vector up(0.0, s.velocity), down(0.0, -s.velocity);
-    if (s.radius > 0) {
-        using gimlet::scene::ball, gimlet::scene::difference;
-        const A::vector c0(0.0, cavity_centre(0)[1]), c1(0.0, cavity_centre(1)[1]);
-        scene.add_body(difference(lower, ball<A>(c0, s.radius)), hmx, up, 2, "lower block");
-        scene.add_body(difference(upper, ball<A>(c1, s.radius)), hmx, down, 2, "upper block");
-    } else {
-        scene.add_body(lower, hmx, up, 2, "lower block");
-        scene.add_body(upper, hmx, down, 2, "upper block");
-    }
+    add_blocks(scene, s, gimlet::scene::box<A>(A::vector(0.0, 0.0), A::vector(0.5 * width, height)),
+               gimlet::scene::box<A>(A::vector(0.0, height + gap), A::vector(0.5 * width, 2 * height + gap)),
+               A::vector(0.0, cavity_centre(0)[1]), A::vector(0.0, cavity_centre(1)[1]));
     return scene;
 }
 
@@ -336,7 +336,7 @@ template <class M = material>
 gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
     validate(s);
     gimlet::grid_spec<S3> gs;
-    const double margin = s.cell * std::ceil((5e-3 + s.velocity * s.end) / s.cell);
+    const double margin = grid_margin(s);
     const double side = s.free_side() ? 0.5 * width + margin : width;
     gs.lower = S3::vector(0.0, 0.0, -margin);
     gs.upper = S3::vector(side, side, 2 * height + gap + margin);
@@ -344,28 +344,15 @@ gimlet::scene::scene<S3, M> make_3d_scene(const settings& s) {
     const auto across = s.free_side() ? gimlet::boundary::slip : gimlet::boundary::periodic;
     gs.bc = {across, across, gimlet::boundary::free};
     gimlet::scene::scene<S3, M> scene(gs);
-    auto hmx = gimlet::presets::make_hmx<gimlet::eos::energy_reference::internal_energy, typename M::thermal_type>(
-        {}, gimlet::viscosity::bulk(s.viscosity_quadratic, s.viscosity_linear));
-    if constexpr (std::is_same_v<typename M::thermal_type, chosen_temperature>)
-        hmx.thermal.use_paper(s.paper_temperature);
-    const S3::vector up(0.0, 0.0, s.velocity), down(0.0, 0.0, -s.velocity);
     const double axis = axis_coordinate(s);
     const S3::vector c0(axis, axis, cavity_centre(0)[1]), c1(axis, axis, cavity_centre(1)[1]);
-    auto add = [&](const auto& lower, const auto& upper) {
-        using gimlet::scene::ball, gimlet::scene::difference;
-        if (s.radius > 0) {
-            scene.add_body(difference(lower, ball<S3>(c0, s.radius)), hmx, up, 2, "lower block");
-            scene.add_body(difference(upper, ball<S3>(c1, s.radius)), hmx, down, 2, "upper block");
-        } else {
-            scene.add_body(lower, hmx, up, 2, "lower block");
-            scene.add_body(upper, hmx, down, 2, "upper block");
-        }
-    };
     if (s.free_side())
-        add(quarter_cylinder{0.5 * width, 0.0, height}, quarter_cylinder{0.5 * width, height + gap, 2 * height + gap});
+        add_blocks(scene, s, quarter_cylinder{0.5 * width, 0.0, height},
+                   quarter_cylinder{0.5 * width, height + gap, 2 * height + gap}, c0, c1);
     else
-        add(gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(width, width, height)),
-            gimlet::scene::box<S3>(S3::vector(0.0, 0.0, height + gap), S3::vector(width, width, 2 * height + gap)));
+        add_blocks(scene, s, gimlet::scene::box<S3>(S3::vector(0.0, 0.0, 0.0), S3::vector(width, width, height)),
+                   gimlet::scene::box<S3>(S3::vector(0.0, 0.0, height + gap), S3::vector(width, width, 2 * height + gap)),
+                   c0, c1);
     return scene;
 }
 

@@ -378,6 +378,10 @@ TEST_CASE("driven particles: a flag beyond the space's axes is refused by name, 
     CHECK(p.column<gimlet::fields::position>()[3][0] == Approx(x0[0] - 2.0 * dt).epsilon(1e-14));
     CHECK(p.column<gimlet::fields::position>()[3][1] == Approx(x0[1] + 5.0 * dt).epsilon(1e-14));
     CHECK(p.column<gimlet::fields::velocity>()[3] == A::vector(-2.0, 5.0));
+    p.column<gimlet::fields::driven_velocity>()[3] = A::vector(std::nan(""), 0.0);
+    CHECK_THROWS_WITH(sol.step(), Catch::Contains("particle 3") && Catch::Contains("driven_velocity") &&
+                                      Catch::Contains("not finite"));
+    p.column<gimlet::fields::driven_velocity>()[3] = A::vector(-2.0, 5.0);
     p.column<gimlet::fields::driven>()[3] = 0b100;
     CHECK_THROWS_WITH(sol.step(), Catch::Contains("driven") && Catch::Contains("0 to 3"));
 }

@@ -62,6 +62,10 @@ public:
                                         std::to_string(unsigned(flag[i])),
                                         "0 to " + std::to_string((1u << S::dim) - 1) +
                                             " (bit d drives the velocity component along axis d)");
+            if (!vd[i].allFinite())
+                throw invalid_parameter(describe_particle(c.particles_[i], c.steps_, double(c.time_)) +
+                                            ": driven_velocity (m/s)",
+                                        "not finite", "finite on every axis");
             vector driven = vector::Zero();  // 1 on the driven components
             for (int d = 0; d < S::dim; ++d) driven[d] = (flag[i] >> d) & 1u ? real(1) : real(0);
             auto at = c.entries(i);
