@@ -464,21 +464,21 @@ public:
     }
 
     // The mass-weighted mean 1 - J of the particles whose centres lie within `radius` of
-    // `centre`: the disc the hot spot's temperature averages (diagnostics::hot_spot). Serial, so
-    // that its sum has the same bits on any thread count; it runs only on the steps that raise
-    // the hot spot's peak, and costs one pass over the particles without the material update.
+    // `centre`: the disc the hot spot's temperature averages (diagnostics::hot_spot). Its sums are
+    // exact until read (gimlet::exact_sum), so they do not depend on the particle order; it runs
+    // only on the steps that raise the hot spot's peak, one serial pass over the particles.
     template <class Solver>
     static double disc_compression(const Solver& sol, const Vector& centre, double radius) {
         const auto& p = sol.particles();
         const auto& x = p.template column<gimlet::fields::position>();
         const auto& m = p.template column<gimlet::fields::mass>();
-        double mass = 0, eta = 0;
+        gimlet::exact_sum mass, eta;
         for (std::size_t i = 0; i < p.size(); ++i) {
             if (!((x[i] - centre).squaredNorm() <= radius * radius)) continue;
-            mass += m[i];
-            eta += m[i] * (1.0 - double(gimlet::jacobian(p[i])));
+            mass += double(m[i]);
+            eta += double(m[i]) * (1.0 - double(gimlet::jacobian(p[i])));
         }
-        return mass > 0 ? eta / mass : -1.0;
+        return mass.value() > 0 ? eta.value() / mass.value() : -1.0;
     }
 
     template <class Solver>

@@ -12,6 +12,7 @@
 #include "gimlet/core/describe.hpp"
 #include "gimlet/core/elastic_moduli.hpp"
 #include "gimlet/core/error.hpp"
+#include "gimlet/core/exact_sum.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/grid.hpp"
 #include "gimlet/material/material.hpp"

@@ -2,13 +2,17 @@
 #pragma once
 /// \file
 /// Conserved quantities of a particle system: mass, linear momentum, kinetic and internal
-/// energy. Sums run in particle order, so they do not depend on the thread count. In plane
+/// energy. Each is the exact sum of its particles' terms rounded once (gimlet::exact_sum), so it
+/// does not depend on the particle order, the thread count or how the particles are split
+/// between processes. In plane
 /// strain they are per metre of depth; in an axisymmetric space they are the whole body's, the
 /// rings' per-radian sums times 2 pi (the integral over theta of the weak form's r dr dz).
 
+#include "gimlet/core/exact_sum.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/space.hpp"
 
+#include <array>
 #include <cstddef>
 #include <numbers>
 #include <type_traits>
@@ -31,9 +35,9 @@ template <class Solver, class T>
 /// Total mass sum m_p (kg; per unit thickness in plane strain; 2 pi sum m_p axisymmetric).
 template <class Solver>
 [[nodiscard]] double total_mass(const Solver& s) {
-    double m = 0;
+    exact_sum m;
     for (auto mp : s.particles().template column<fields::mass>()) m += double(mp);
-    return detail::whole_body<Solver>(m);
+    return detail::whole_body<Solver>(m.value());
 }
 
 /// Linear momentum sum m_p v_p (axisymmetric: 2 pi sum m_p v_p, whose radial component is no
@@ -43,8 +47,11 @@ template <class Solver>
 [[nodiscard]] Eigen::Matrix<double, Solver::dim, 1> linear_momentum(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& v = s.particles().template column<fields::velocity>();
-    Eigen::Matrix<double, Solver::dim, 1> p = Eigen::Matrix<double, Solver::dim, 1>::Zero();
-    for (std::size_t i = 0; i < m.size(); ++i) p += double(m[i]) * v[i].template cast<double>();
+    std::array<exact_sum, Solver::dim> sum;
+    for (std::size_t i = 0; i < m.size(); ++i)
+        for (int d = 0; d < Solver::dim; ++d) sum[std::size_t(d)] += double(m[i]) * double(v[i][d]);
+    Eigen::Matrix<double, Solver::dim, 1> p;
+    for (int d = 0; d < Solver::dim; ++d) p[d] = sum[std::size_t(d)].value();
     return detail::whole_body<Solver>(p);
 }
 
@@ -53,9 +60,9 @@ template <class Solver>
 [[nodiscard]] double kinetic_energy(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& v = s.particles().template column<fields::velocity>();
-    double e = 0;
+    exact_sum e;
     for (std::size_t i = 0; i < m.size(); ++i) e += 0.5 * double(m[i]) * v[i].template cast<double>().squaredNorm();
-    return detail::whole_body<Solver>(e);
+    return detail::whole_body<Solver>(e.value());
 }
 
 /// Internal energy sum m_p e_p (J): the stress work stored in (elastic: strain energy) or
@@ -65,9 +72,9 @@ template <class Solver>
 [[nodiscard]] double internal_energy(const Solver& s) {
     const auto& m = s.particles().template column<fields::mass>();
     const auto& e = s.particles().template column<fields::specific_internal_energy>();
-    double u = 0;
+    exact_sum u;
     for (std::size_t i = 0; i < m.size(); ++i) u += double(m[i]) * double(e[i]);
-    return detail::whole_body<Solver>(u);
+    return detail::whole_body<Solver>(u.value());
 }
 
 /// One sample of the conserved quantities (per unit thickness in plane strain; the whole body's

@@ -8,6 +8,7 @@
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
+#include "gimlet/core/exact_sum.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/material_point.hpp"
 #include "gimlet/diagnostics/conservation.hpp"
@@ -642,7 +643,8 @@ template <class Solver>
 }
 
 /// The material hotter than each of `temperatures` (K): its mass (kg; per metre of depth in plane
-/// strain) and current volume J V0 (m^3; m^2 per metre in plane strain), summed in particle order;
+/// strain) and current volume J V0 (m^3; m^2 per metre in plane strain), each the exact sum
+/// rounded once (gimlet::exact_sum: independent of the particle order and of the thread count);
 /// in an axisymmetric space the whole body's, 2 pi times the rings' per-radian sums (as
 /// diagnostics::total_mass). This is
 /// how pore-collapse studies compare hot spots across resolutions: the amount of material above
@@ -653,9 +655,8 @@ struct hot_material_result {
     std::vector<double> mass, volume;
     ///@}
 };
-/// Computes hot_material_result for each of `temperatures` (K). From 4096 particles the hot
-/// particles are found on the solver's threads; the sums run in particle order, so the result
-/// does not depend on the thread count. Needs the temperature field (a thermal policy that is on).
+/// Computes hot_material_result for each of `temperatures` (K), on the solver's threads from
+/// 4096 particles. Needs the temperature field (a thermal policy that is on).
 template <class Solver>
 [[nodiscard]] hot_material_result hot_material(const Solver& s, const std::vector<double>& temperatures) {
     static_assert(Solver::store_type::template has<fields::temperature>,
@@ -664,28 +665,31 @@ template <class Solver>
     const auto& m = store.template column<fields::mass>();
     const auto& v0 = store.template column<fields::volume0>();
     const auto& T = store.template column<fields::temperature>();
-    hot_material_result r;
-    r.mass.assign(temperatures.size(), 0.0);
-    r.volume.assign(temperatures.size(), 0.0);
-    // From 4096 particles the hot particles are found on the solver's threads, a block of
-    // consecutive particles each, with their current volumes; the sums then run over them in
-    // particle order, as one serial pass would sum them.
-    const std::size_t n = store.size();
+    // From 4096 particles the blocks of consecutive particles are summed on the solver's
+    // threads; the sums are exact until read (gimlet::exact_sum), so the blocks merge in any
+    // grouping to the same bits.
+    const std::size_t n = store.size(), t = temperatures.size();
     const int threads = gimlet::detail::threads_of(s);
     const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
-    std::vector<std::vector<std::pair<std::size_t, double>>> hot(blocks);  // (index, J V0)
+    std::vector<exact_sum> mass(blocks * t), volume(blocks * t);  // per block and temperature
     gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
-        for (std::size_t i = first; i < last; ++i)
-            if (std::any_of(temperatures.begin(), temperatures.end(), [&](double t) { return double(T[i]) > t; }))
-                hot[b].push_back({i, double(gimlet::jacobian(store[i])) * double(v0[i])});
+        for (std::size_t i = first; i < last; ++i) {
+            const double Ti = double(T[i]);
+            if (std::none_of(temperatures.begin(), temperatures.end(), [&](double above) { return Ti > above; })) continue;
+            const double current = double(gimlet::jacobian(store[i])) * double(v0[i]);
+            for (std::size_t k = 0; k < t; ++k)
+                if (Ti > temperatures[k]) mass[b * t + k] += double(m[i]), volume[b * t + k] += current;
+        }
     });
-    for (const auto& found : hot)
-        for (const auto& [i, volume] : found)
-            for (std::size_t k = 0; k < temperatures.size(); ++k)
-                if (double(T[i]) > temperatures[k]) {
-                    r.mass[k] += double(m[i]);
-                    r.volume[k] += volume;
-                }
+    hot_material_result r;
+    r.mass.assign(t, 0.0);
+    r.volume.assign(t, 0.0);
+    for (std::size_t k = 0; k < t; ++k) {
+        exact_sum mass_above, volume_above;
+        for (std::size_t b = 0; b < blocks; ++b) mass_above += mass[b * t + k], volume_above += volume[b * t + k];
+        r.mass[k] = mass_above.value();
+        r.volume[k] = volume_above.value();
+    }
     for (std::size_t k = 0; k < temperatures.size(); ++k) {
         r.mass[k] = detail::whole_body<Solver>(r.mass[k]);
         r.volume[k] = detail::whole_body<Solver>(r.volume[k]);
