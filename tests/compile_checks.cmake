@@ -30,6 +30,7 @@ endif()
 #   solver                                     the composed solver and its parts
 #   presets diagnostics io                     presets, measurements, files
 #   materials                                  the former name of presets/, forwarding to it
+#   mpi                                        the solver on many processes (needs MPI)
 set(GIMLET_LAYERS
     "core:core"
     "shape:core,shape"
@@ -45,12 +46,16 @@ set(GIMLET_LAYERS
     "presets:core,strength,eos,thermal,viscosity,material,presets"
     "materials:core,strength,eos,thermal,viscosity,material,presets,materials"
     "diagnostics:core,diagnostics"
-    "io:core,io")
+    "io:core,io"
+    "mpi:core,shape,strength,eos,thermal,viscosity,contact,multi_field,material,scene,solver,diagnostics,io,mpi")
 
 file(GLOB_RECURSE GIMLET_PUBLIC_HEADERS CONFIGURE_DEPENDS
      RELATIVE "${PROJECT_SOURCE_DIR}/include"
      "${PROJECT_SOURCE_DIR}/include/gimlet/*.hpp")
 list(FILTER GIMLET_PUBLIC_HEADERS EXCLUDE REGEX "(^|/)detail/")
+if(NOT GIMLET_USES_MPI)
+    list(FILTER GIMLET_PUBLIC_HEADERS EXCLUDE REGEX "^gimlet/mpi/")  # <mpi.h> is not there
+endif()
 list(SORT GIMLET_PUBLIC_HEADERS)
 
 # The include tree of each layer.
@@ -171,6 +176,9 @@ foreach(_layer IN LISTS _gimlet_layer_names)
     target_link_libraries(gimlet_header_check_${_layer} PRIVATE Eigen3::Eigen gimlet_warnings)
     if(GIMLET_USES_OPENMP)
         target_link_libraries(gimlet_header_check_${_layer} PRIVATE OpenMP::OpenMP_CXX)
+    endif()
+    if(_layer STREQUAL "mpi")
+        target_link_libraries(gimlet_header_check_${_layer} PRIVATE MPI::MPI_CXX)
     endif()
     target_precompile_headers(gimlet_header_check_${_layer} REUSE_FROM gimlet_header_check_pch)
 endforeach()

@@ -84,6 +84,12 @@ public:
         (std::get<index_of<Tags>()>(columns_).push_back(field_initial_value<Tags, S>()), ...);
         return size_++;
     }
+    /// n particles: the first min(n, size()) kept, any new ones with every field at its initial
+    /// value.
+    void resize(std::size_t n) {
+        (std::get<index_of<Tags>()>(columns_).resize(n, field_initial_value<Tags, S>()), ...);
+        size_ = n;
+    }
     /// Reserve room for n particles in every column.
     void reserve(std::size_t n) { (std::get<index_of<Tags>()>(columns_).reserve(n), ...); }
 

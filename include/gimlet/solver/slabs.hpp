@@ -13,10 +13,23 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace gimlet::detail {
+
+/// What a slab pass does between its colours and after the last one where the slabs are split
+/// between processes (mpi::node_fold: each node's running sum passes to the process that adds
+/// next): nothing in one process. A type for for_each's `exchange` has the same three members.
+struct no_exchange {
+    /// Whether the pass exchanges anything (false: the colours run in one parallel region).
+    [[nodiscard]] static constexpr bool active() noexcept { return false; }
+    /// Called once, on one thread, after colour c's slabs have all scattered (c = 0, 1, 2 in order).
+    static void after_colour(int) noexcept {}
+    /// Called once, on one thread, after after_colour(2).
+    static void finish() noexcept {}
+};
 
 /// The grid is cut along its last axis into slabs of SlabRows >= stencil - 1 node rows; a
 /// particle belongs to the slab of its stencil's first row. Its stencil then reaches at most
@@ -35,12 +48,25 @@ public:
         // on a periodic axis only the last slab's stencils wrap, and then only onto slab 0.
         slabs_ = std::max(1, rows / SlabRows);
         rows_ = rows, periodic_ = periodic;
+        // (colour() reads slabs_ and periodic_, set above.)
         for (auto& c : colour_slabs_) c.clear();
-        for (int s = 0; s < slabs_; ++s) {
-            const bool wraps_onto_first = periodic && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1;
-            colour_slabs_[wraps_onto_first ? 2 : std::size_t(s % 2)].push_back(s);
-        }
+        for (int s = 0; s < slabs_; ++s) colour_slabs_[std::size_t(colour(s))].push_back(s);
     }
+
+    /// The number of slabs.
+    [[nodiscard]] int slabs() const noexcept { return slabs_; }
+    /// The node rows along the last axis, and whether that axis is periodic (set_up's).
+    [[nodiscard]] int rows() const noexcept { return rows_; }
+    [[nodiscard]] bool periodic() const noexcept { return periodic_; }
+    /// Slab s's first node row, and the end of its rows (the last slab takes the remainder).
+    [[nodiscard]] int first_row(int s) const noexcept { return s * SlabRows; }
+    [[nodiscard]] int end_row(int s) const noexcept { return s == slabs_ - 1 ? rows_ : (s + 1) * SlabRows; }
+    /// The colour of slab s (0, 1 or 2): the colours scatter in increasing order.
+    [[nodiscard]] int colour(int s) const noexcept {
+        return periodic_ && slabs_ % 2 == 1 && slabs_ > 1 && s == slabs_ - 1 ? 2 : s % 2;
+    }
+    /// The node rows per slab (the last slab may have up to twice as many less one).
+    static constexpr int slab_rows = SlabRows;
 
     /// Room for n particles.
     void resize(std::size_t n) { slab_of_.resize(n); }
@@ -74,17 +100,21 @@ public:
     }
 
     /// f(i) for every particle, slab by slab and colour by colour, on `threads` threads if
-    /// `parallel`. f must not throw.
-    template <class F>
-    void for_each(bool parallel, int threads, F&& f) const {
+    /// `parallel`. f must not throw. Where `exchange.active()`, each colour runs in a parallel
+    /// region of its own, followed by exchange.after_colour(colour) on the calling thread (every
+    /// colour, even one without slabs, so that processes call it alike), then exchange.finish().
+    template <class F, class X = no_exchange>
+    void for_each(bool parallel, int threads, F&& f, X&& exchange = X{}) const {
+        if constexpr (!std::is_same_v<std::remove_cvref_t<X>, no_exchange>)
+            if (exchange.active()) return for_each_exchanging(nullptr, parallel, threads, f, exchange);
         for_each_kept(nullptr, parallel, threads, std::forward<F>(f));
     }
 
     /// for_each over the slabs whose particles' stencils can reach a node row r (of the last
     /// axis) with rows[r] != 0 (`rows`: a flag per row, set_up's count); the other slabs'
     /// particles are skipped. Every particle in a kept slab is visited, in for_each's order.
-    template <class F>
-    void for_each_reaching(const std::vector<std::uint8_t>& rows, bool parallel, int threads, F&& f) {
+    template <class F, class X = no_exchange>
+    void for_each_reaching(const std::vector<std::uint8_t>& rows, bool parallel, int threads, F&& f, X&& exchange = X{}) {
         assert(rows.size() == std::size_t(rows_));
         keep_.assign(std::size_t(slabs_), 0);
         for (int s = 0; s < slabs_; ++s) {
@@ -96,10 +126,30 @@ public:
                 keep_[std::size_t(s)] = rows[std::size_t(r % rows_)];
             }
         }
+        if constexpr (!std::is_same_v<std::remove_cvref_t<X>, no_exchange>)
+            if (exchange.active()) return for_each_exchanging(keep_.data(), parallel, threads, f, exchange);
         for_each_kept(keep_.data(), parallel, threads, std::forward<F>(f));
     }
 
 private:
+    // for_each_kept with an exchange after each colour: a parallel region per colour.
+    template <class F, class X>
+    void for_each_exchanging(const std::uint8_t* keep, bool parallel, int threads, F& f, X& exchange) const {
+        for (std::size_t c = 0; c < colour_slabs_.size(); ++c) {
+            const auto& slabs = colour_slabs_[c];
+            thread_shares colour(std::ptrdiff_t(slabs.size()), threads, parallel);
+            GIMLET_OMP(parallel num_threads(colour.team()))
+            for (auto claimed = colour.start(); colour.claim(claimed);)
+                for (std::ptrdiff_t j = claimed.first, end = claimed.last; j < end; ++j) {
+                    const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
+                    if (keep && !keep[s]) continue;
+                    for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
+                }
+            exchange.after_colour(int(c));
+        }
+        exchange.finish();
+    }
+
     // A schedule for each colour's slabs, and the last colour with slabs (no barrier after it
     // but the region's). Built out of line: it is the same for every pass.
     struct colour_shares {

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The grid's slabs on many processes: which rank owns which slabs (gimlet::mpi::slab_ranks),
+/// and the exchange that completes every node's sum in the one-process order
+/// (gimlet::mpi::node_fold).
+
+#include "gimlet/core/error.hpp"
+#include "gimlet/mpi/communicator.hpp"
+#include "gimlet/solver/slabs.hpp"
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace gimlet::mpi {
+
+/// Contiguous ranges of the slabs of one global schedule (detail::slab_schedule, built from the
+/// global rows and periodicity), one per rank, as even in count as the division allows: rank r
+/// owns slabs [first(r), first(r + 1)). A slab's colour belongs to its global index, so the
+/// order in which each node sums its particles is the same for any number of ranks.
+class slab_ranks {
+public:
+    /// `slabs` slabs on `ranks` ranks. Throws gimlet::invalid_parameter where a rank would own
+    /// no whole slab (ranks > slabs).
+    slab_ranks(int slabs, int ranks) : slabs_(slabs), ranks_(ranks) {
+        require(ranks >= 1 && ranks <= slabs, "MPI ranks", double(ranks),
+                "1 .. " + std::to_string(slabs) + ": the grid's slabs of node rows along the last axis, at least one a rank");
+    }
+
+    /// The first slab of rank r (first(ranks) = slabs).
+    [[nodiscard]] int first(int r) const noexcept {
+        return int(std::int64_t(slabs_) * r / ranks_);
+    }
+    /// The rank that owns slab s.
+    [[nodiscard]] int owner(int s) const noexcept {
+        // The largest r with first(r) <= s.
+        int r = int((std::int64_t(s) * ranks_ + ranks_ - 1) / slabs_);
+        while (r > 0 && first(r) > s) --r;
+        while (r + 1 < ranks_ && first(r + 1) <= s) ++r;
+        return r;
+    }
+    /// The number of slabs and of ranks.
+    [[nodiscard]] int slabs() const noexcept { return slabs_; }
+    [[nodiscard]] int ranks() const noexcept { return ranks_; }
+
+private:
+    int slabs_, ranks_;
+};
+
+/// The nodal arrays one slab pass writes, for node_fold: each a std::vector of values copied byte
+/// for byte (numbers, fixed-size Eigen vectors), `blocks` blocks (velocity fields) of the grid's nodes each, node rows along
+/// the last axis outermost within a block.
+struct nodal_array {
+    std::byte* data = nullptr;
+    std::size_t value_bytes = 0;
+    std::size_t blocks = 1;
+
+    /// The array `values`, of whole blocks of `nodes` nodes.
+    template <class T>
+    static nodal_array of(std::vector<T>& values, std::size_t nodes) {
+        static_assert(std::is_trivially_destructible_v<T> && std::is_standard_layout_v<T>,
+                      "nodal_array: values copied byte for byte (numbers, fixed-size Eigen vectors)");
+        return {reinterpret_cast<std::byte*>(values.data()), sizeof(T), nodes ? values.size() / nodes : 0};
+    }
+};
+
+/// The exchange that makes every node's sum over a slab pass on many processes bitwise the sum
+/// one process makes. One process adds a node's contributions colour by colour: a node of the
+/// first rows of slab u (the rows the stencils of slab u - 1 reach) takes them from slabs u - 1
+/// and u, the one of lower colour first, each in particle order (detail::slab_schedule). Where
+/// the two slabs are on different ranks, the rank of the first colour scatters its slab and
+/// passes its running sums of those rows (the band) to the other, which goes on from them, adds
+/// its own and passes the completed sums back. No partial sums are added to each other, so
+/// every node's sum is the one-process left fold, and node values outside the bands never
+/// travel. (The alternative, copies of the neighbours' particles scattered by each rank, would
+/// send whole particles before every scatter: a band of SlabRows node rows is smaller than the
+/// particles that reach it.)
+///
+/// Every rank holds the whole grid's arrays and touches its own slabs' rows and the band above
+/// its last slab. Before a pass the bands must hold the same values on both ranks (zero, or
+/// the last pass's completed sums: every pass ends with them so).
+template <int SlabRows>
+class node_fold {
+    // A band of node rows two ranks both add to: the first SlabRows rows of the upper slab.
+    struct band {
+        int tag = 0, other = 0;  // the upper slab's index x 2 (+1 for the completed sums); the other rank
+        int mine = 0, theirs = 0;  // the colours of this rank's slab and the other's
+        std::size_t first = 0, count = 0;  // nodes [first, first + count) of each block
+    };
+
+public:
+    /// The schedule (set up with the global rows), the ranks that own its slabs, and the grid's
+    /// nodes per row of the last axis and in all.
+    node_fold(const communicator& comm, const detail::slab_schedule<SlabRows>& schedule, std::size_t nodes_per_row,
+              std::size_t nodes)
+        : comm_(comm), ranks_(schedule.slabs(), comm.size()), nodes_(nodes) {
+        const int L = schedule.slabs(), me = comm.rank();
+        for (int u = 0; u < L; ++u) {
+            if (u == 0 && !(schedule.periodic() && L > 1)) continue;  // slab 0 has no slab below
+            const int s = (u + L - 1) % L;
+            const int lower = ranks_.owner(s), upper = ranks_.owner(u);
+            if (lower == upper || (lower != me && upper != me)) continue;
+            band b;
+            b.tag = 2 * u;
+            b.other = lower == me ? upper : lower;
+            b.mine = lower == me ? schedule.colour(s) : schedule.colour(u);
+            b.theirs = lower == me ? schedule.colour(u) : schedule.colour(s);
+            b.first = std::size_t(schedule.first_row(u)) * nodes_per_row;
+            b.count = std::size_t(std::min(schedule.first_row(u) + SlabRows, schedule.end_row(u)) - schedule.first_row(u)) *
+                      nodes_per_row;
+            bands_.push_back(b);
+        }
+        const int tag_limit = 2 * L + 2;
+        int* upper_bound = nullptr;
+        int found = 0;
+        MPI_Comm_get_attr(comm.get(), MPI_TAG_UB, &upper_bound, &found);
+        require(!found || *upper_bound >= tag_limit, "slabs along the last axis", double(L),
+                "at most " + std::to_string(found ? *upper_bound / 2 - 1 : 0) + " (this MPI's largest message tag / 2)");
+    }
+
+    /// The ranks that own the slabs.
+    [[nodiscard]] const slab_ranks& ranks() const noexcept { return ranks_; }
+
+    /// The exchange of one pass over `arrays` (slab_schedule::for_each's `exchange`).
+    class pass {
+    public:
+        pass(node_fold& fold, std::vector<nodal_array> arrays) : fold_(&fold), arrays_(std::move(arrays)) {}
+        [[nodiscard]] bool active() const noexcept { return fold_->comm_.size() > 1; }
+        void after_colour(int c) {
+            for (auto& b : fold_->bands_)
+                if (b.mine == c && b.theirs > c) send(b, b.tag);
+            for (auto& b : fold_->bands_)
+                if (b.theirs == c && b.mine > c) receive(b, b.tag);
+        }
+        void finish() {
+            for (auto& b : fold_->bands_)
+                if (b.mine > b.theirs) send(b, b.tag + 1);
+            for (auto& b : fold_->bands_)
+                if (b.theirs > b.mine) receive(b, b.tag + 1);
+            MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+            requests_.clear();
+            outgoing_.clear();
+        }
+
+    private:
+        [[nodiscard]] std::size_t band_bytes(const band& b) const {
+            std::size_t bytes = 0;
+            for (const auto& a : arrays_) bytes += a.blocks * b.count * a.value_bytes;
+            return bytes;
+        }
+        void send(const band& b, int tag) {
+            auto& buffer = outgoing_.emplace_back(band_bytes(b));
+            std::byte* at = buffer.data();
+            for (const auto& a : arrays_)
+                for (std::size_t k = 0; k < a.blocks; ++k) {
+                    const std::size_t bytes = b.count * a.value_bytes;
+                    std::memcpy(at, a.data + (k * fold_->nodes_ + b.first) * a.value_bytes, bytes);
+                    at += bytes;
+                }
+            fold_->comm_.isend(buffer.data(), buffer.size(), b.other, tag, requests_.emplace_back());
+        }
+        void receive(const band& b, int tag) {
+            incoming_.resize(band_bytes(b));
+            fold_->comm_.recv(incoming_.data(), incoming_.size(), b.other, tag);
+            const std::byte* at = incoming_.data();
+            for (const auto& a : arrays_)
+                for (std::size_t k = 0; k < a.blocks; ++k) {
+                    const std::size_t bytes = b.count * a.value_bytes;
+                    std::memcpy(a.data + (k * fold_->nodes_ + b.first) * a.value_bytes, at, bytes);
+                    at += bytes;
+                }
+        }
+
+        node_fold* fold_;
+        std::vector<nodal_array> arrays_;
+        std::vector<std::vector<std::byte>> outgoing_;  // kept until their sends complete
+        std::vector<std::byte> incoming_;
+        std::vector<MPI_Request> requests_;
+    };
+
+    /// The exchange of a pass that writes `arrays` (nodal_array::of each).
+    [[nodiscard]] pass exchange(std::vector<nodal_array> arrays) { return pass(*this, std::move(arrays)); }
+
+private:
+    communicator comm_;
+    slab_ranks ranks_;
+    std::size_t nodes_;
+    std::vector<band> bands_;
+};
+
+}  // namespace gimlet::mpi
