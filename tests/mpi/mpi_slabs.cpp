@@ -4,6 +4,7 @@
 // process makes, for every shape's slab rows, periodic or not, one or two velocity fields and
 // one or two threads; a rank count that leaves a rank without a slab is refused by name.
 #include <gimlet/mpi/slabs.hpp>
+#include <gimlet/solver/slabs.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -85,7 +86,7 @@ void check_fold(int rows, bool periodic, int fields, int threads) {
     std::vector<Eigen::Vector2d> momentum_1;
     c.scatter(all, 1, mass_1, momentum_1, gimlet::detail::no_exchange{});
     // This rank's particles (those of its slabs), scattered with the bands passed on.
-    gimlet::mpi::node_fold<SlabRows> fold(comm, global, c.per_row, c.nodes());
+    gimlet::mpi::node_fold fold(comm, global.layout(c.per_row, c.nodes()));
     const auto& ranks = fold.ranks();
     std::vector<std::size_t> mine;
     for (std::size_t p = 0; p < all.size(); ++p)
@@ -97,7 +98,7 @@ void check_fold(int rows, bool periodic, int fields, int threads) {
         mass.assign(c.nodes() * std::size_t(fields), 0.0);
         momentum.assign(c.nodes() * std::size_t(fields), Eigen::Vector2d::Zero());
     }
-    auto exchange = fold.exchange({gimlet::mpi::nodal_array::of(mass, c.nodes()), gimlet::mpi::nodal_array::of(momentum, c.nodes())});
+    auto exchange = fold.exchange({gimlet::nodal_array::of(mass, c.nodes()), gimlet::nodal_array::of(momentum, c.nodes())});
     c.scatter(mine, threads, mass, momentum, exchange);
     // Every node of this rank's slabs and of the band above its last slab.
     const int first_slab = ranks.first(comm.rank()), end_slab = ranks.first(comm.rank() + 1);

@@ -4,12 +4,14 @@
 /// Conserved quantities of a particle system: mass, linear momentum, kinetic and internal
 /// energy. Each is the exact sum of its particles' terms rounded once (gimlet::exact_sum), so it
 /// does not depend on the particle order, the thread count or how the particles are split
-/// between processes. In plane
+/// between processes. On many processes (solver_options::processes) each is the whole run's,
+/// collective: every process calls it. In plane
 /// strain they are per metre of depth; in an axisymmetric space they are the whole body's, the
 /// rings' per-radian sums times 2 pi (the integral over theta of the weak form's r dr dz).
 
 #include "gimlet/core/exact_sum.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/core/space.hpp"
 
 #include <array>
@@ -23,6 +25,15 @@
 namespace gimlet::diagnostics {
 
 namespace detail {
+// A sum over this process's particles completed over every process of the run (the solver's
+// processes(), where it has some): exact, so the same bits as one process's sum.
+template <class Solver>
+[[nodiscard]] exact_sum over_processes(const Solver& s, const exact_sum& part) {
+    if constexpr (requires { s.processes(); })
+        if (gimlet::processes* p = s.processes()) return p->sum(part);
+    return part;
+}
+
 // A per-radian sum of an axisymmetric solver times 2 pi: the whole body's; other sums as they are.
 template <class Solver, class T>
 [[nodiscard]] T whole_body(T sum) {
@@ -37,7 +48,7 @@ template <class Solver>
 [[nodiscard]] double total_mass(const Solver& s) {
     exact_sum m;
     for (auto mp : s.particles().template column<fields::mass>()) m += double(mp);
-    return detail::whole_body<Solver>(m.value());
+    return detail::whole_body<Solver>(detail::over_processes(s, m).value());
 }
 
 /// Linear momentum sum m_p v_p (axisymmetric: 2 pi sum m_p v_p, whose radial component is no
@@ -51,7 +62,7 @@ template <class Solver>
     for (std::size_t i = 0; i < m.size(); ++i)
         for (int d = 0; d < Solver::dim; ++d) sum[std::size_t(d)] += double(m[i]) * double(v[i][d]);
     Eigen::Matrix<double, Solver::dim, 1> p;
-    for (int d = 0; d < Solver::dim; ++d) p[d] = sum[std::size_t(d)].value();
+    for (int d = 0; d < Solver::dim; ++d) p[d] = detail::over_processes(s, sum[std::size_t(d)]).value();
     return detail::whole_body<Solver>(p);
 }
 
@@ -62,7 +73,7 @@ template <class Solver>
     const auto& v = s.particles().template column<fields::velocity>();
     exact_sum e;
     for (std::size_t i = 0; i < m.size(); ++i) e += 0.5 * double(m[i]) * v[i].template cast<double>().squaredNorm();
-    return detail::whole_body<Solver>(e.value());
+    return detail::whole_body<Solver>(detail::over_processes(s, e).value());
 }
 
 /// Internal energy sum m_p e_p (J): the stress work stored in (elastic: strain energy) or
@@ -74,7 +85,7 @@ template <class Solver>
     const auto& e = s.particles().template column<fields::specific_internal_energy>();
     exact_sum u;
     for (std::size_t i = 0; i < m.size(); ++i) u += double(m[i]) * double(e[i]);
-    return detail::whole_body<Solver>(u.value());
+    return detail::whole_body<Solver>(detail::over_processes(s, u).value());
 }
 
 /// One sample of the conserved quantities (per unit thickness in plane strain; the whole body's

@@ -687,8 +687,8 @@ template <class Solver>
     for (std::size_t k = 0; k < t; ++k) {
         exact_sum mass_above, volume_above;
         for (std::size_t b = 0; b < blocks; ++b) mass_above += mass[b * t + k], volume_above += volume[b * t + k];
-        r.mass[k] = mass_above.value();
-        r.volume[k] = volume_above.value();
+        r.mass[k] = detail::over_processes(s, mass_above).value();
+        r.volume[k] = detail::over_processes(s, volume_above).value();
     }
     for (std::size_t k = 0; k < temperatures.size(); ++k) {
         r.mass[k] = detail::whole_body<Solver>(r.mass[k]);

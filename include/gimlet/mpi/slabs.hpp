@@ -7,7 +7,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/mpi/communicator.hpp"
-#include "gimlet/solver/slabs.hpp"
+#include "gimlet/core/processes.hpp"
 
 #include <mpi.h>
 
@@ -16,6 +16,9 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace gimlet::mpi {
@@ -53,23 +56,6 @@ private:
     int slabs_, ranks_;
 };
 
-/// The nodal arrays one slab pass writes, for node_fold: each a std::vector of values copied byte
-/// for byte (numbers, fixed-size Eigen vectors), `blocks` blocks (velocity fields) of the grid's nodes each, node rows along
-/// the last axis outermost within a block.
-struct nodal_array {
-    std::byte* data = nullptr;
-    std::size_t value_bytes = 0;
-    std::size_t blocks = 1;
-
-    /// The array `values`, of whole blocks of `nodes` nodes.
-    template <class T>
-    static nodal_array of(std::vector<T>& values, std::size_t nodes) {
-        static_assert(std::is_trivially_destructible_v<T> && std::is_standard_layout_v<T>,
-                      "nodal_array: values copied byte for byte (numbers, fixed-size Eigen vectors)");
-        return {reinterpret_cast<std::byte*>(values.data()), sizeof(T), nodes ? values.size() / nodes : 0};
-    }
-};
-
 /// The exchange that makes every node's sum over a slab pass on many processes bitwise the sum
 /// one process makes. One process adds a node's contributions colour by colour: a node of the
 /// first rows of slab u (the rows the stencils of slab u - 1 reach) takes them from slabs u - 1
@@ -85,7 +71,6 @@ struct nodal_array {
 /// Every rank holds the whole grid's arrays and touches its own slabs' rows and the band above
 /// its last slab. Before a pass the bands must hold the same values on both ranks (zero, or
 /// the last pass's completed sums: every pass ends with them so).
-template <int SlabRows>
 class node_fold {
     // A band of node rows two ranks both add to: the first SlabRows rows of the upper slab.
     struct band {
@@ -95,25 +80,24 @@ class node_fold {
     };
 
 public:
-    /// The schedule (set up with the global rows), the ranks that own its slabs, and the grid's
-    /// nodes per row of the last axis and in all.
-    node_fold(const communicator& comm, const detail::slab_schedule<SlabRows>& schedule, std::size_t nodes_per_row,
-              std::size_t nodes)
-        : comm_(comm), ranks_(schedule.slabs(), comm.size()), nodes_(nodes) {
-        const int L = schedule.slabs(), me = comm.rank();
+    /// The slabs (set up from the global rows) on the processes of `comm`.
+    node_fold(const communicator& comm, const slab_layout& layout)
+        : comm_(comm), ranks_(layout.slabs(), comm.size()), nodes_(layout.nodes) {
+        const int L = layout.slabs(), me = comm.rank();
         for (int u = 0; u < L; ++u) {
-            if (u == 0 && !(schedule.periodic() && L > 1)) continue;  // slab 0 has no slab below
+            if (u == 0 && !(layout.periodic && L > 1)) continue;  // slab 0 has no slab below
             const int s = (u + L - 1) % L;
             const int lower = ranks_.owner(s), upper = ranks_.owner(u);
             if (lower == upper || (lower != me && upper != me)) continue;
             band b;
             b.tag = 2 * u;
             b.other = lower == me ? upper : lower;
-            b.mine = lower == me ? schedule.colour(s) : schedule.colour(u);
-            b.theirs = lower == me ? schedule.colour(u) : schedule.colour(s);
-            b.first = std::size_t(schedule.first_row(u)) * nodes_per_row;
-            b.count = std::size_t(std::min(schedule.first_row(u) + SlabRows, schedule.end_row(u)) - schedule.first_row(u)) *
-                      nodes_per_row;
+            b.mine = layout.colour[std::size_t(lower == me ? s : u)];
+            b.theirs = layout.colour[std::size_t(lower == me ? u : s)];
+            const int first = layout.first_row[std::size_t(u)];
+            const int end = std::min(first + layout.slab_rows, layout.first_row[std::size_t(u) + 1]);
+            b.first = std::size_t(first) * layout.nodes_per_row;
+            b.count = std::size_t(end - first) * layout.nodes_per_row;
             bands_.push_back(b);
         }
         const int tag_limit = 2 * L + 2;
@@ -127,71 +111,118 @@ public:
     /// The ranks that own the slabs.
     [[nodiscard]] const slab_ranks& ranks() const noexcept { return ranks_; }
 
-    /// The exchange of one pass over `arrays` (slab_schedule::for_each's `exchange`).
+    /// After colour c's slabs of a pass over `arrays` have scattered on every rank: the running
+    /// sums of the bands whose next contributor is the other rank go to it, and those this rank
+    /// adds to next come in.
+    void after_colour(int c, std::span<const nodal_array> arrays) {
+        for (const auto& b : bands_)
+            if (b.mine == c && b.theirs > c) send(b, b.tag, arrays);
+        for (const auto& b : bands_)
+            if (b.theirs == c && b.mine > c) receive(b, b.tag, arrays);
+    }
+    /// After the last colour: the completed sums go back to the rank that added first.
+    void finish(std::span<const nodal_array> arrays) {
+        for (const auto& b : bands_)
+            if (b.mine > b.theirs) send(b, b.tag + 1, arrays);
+        for (const auto& b : bands_)
+            if (b.theirs > b.mine) receive(b, b.tag + 1, arrays);
+        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+        requests_.clear();
+        outgoing_.clear();
+    }
+
+    /// The exchange of one pass over `arrays`, for detail::slab_schedule::for_each.
     class pass {
     public:
+        /// The pass over `arrays` (nodal_array::of each).
         pass(node_fold& fold, std::vector<nodal_array> arrays) : fold_(&fold), arrays_(std::move(arrays)) {}
+        /// Whether there is more than one rank.
         [[nodiscard]] bool active() const noexcept { return fold_->comm_.size() > 1; }
-        void after_colour(int c) {
-            for (auto& b : fold_->bands_)
-                if (b.mine == c && b.theirs > c) send(b, b.tag);
-            for (auto& b : fold_->bands_)
-                if (b.theirs == c && b.mine > c) receive(b, b.tag);
-        }
-        void finish() {
-            for (auto& b : fold_->bands_)
-                if (b.mine > b.theirs) send(b, b.tag + 1);
-            for (auto& b : fold_->bands_)
-                if (b.theirs > b.mine) receive(b, b.tag + 1);
-            MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
-            requests_.clear();
-            outgoing_.clear();
-        }
+        /// node_fold::after_colour.
+        void after_colour(int c) { fold_->after_colour(c, arrays_); }
+        /// node_fold::finish.
+        void finish() { fold_->finish(arrays_); }
 
     private:
-        [[nodiscard]] std::size_t band_bytes(const band& b) const {
-            std::size_t bytes = 0;
-            for (const auto& a : arrays_) bytes += a.blocks * b.count * a.value_bytes;
-            return bytes;
-        }
-        void send(const band& b, int tag) {
-            auto& buffer = outgoing_.emplace_back(band_bytes(b));
-            std::byte* at = buffer.data();
-            for (const auto& a : arrays_)
-                for (std::size_t k = 0; k < a.blocks; ++k) {
-                    const std::size_t bytes = b.count * a.value_bytes;
-                    std::memcpy(at, a.data + (k * fold_->nodes_ + b.first) * a.value_bytes, bytes);
-                    at += bytes;
-                }
-            fold_->comm_.isend(buffer.data(), buffer.size(), b.other, tag, requests_.emplace_back());
-        }
-        void receive(const band& b, int tag) {
-            incoming_.resize(band_bytes(b));
-            fold_->comm_.recv(incoming_.data(), incoming_.size(), b.other, tag);
-            const std::byte* at = incoming_.data();
-            for (const auto& a : arrays_)
-                for (std::size_t k = 0; k < a.blocks; ++k) {
-                    const std::size_t bytes = b.count * a.value_bytes;
-                    std::memcpy(a.data + (k * fold_->nodes_ + b.first) * a.value_bytes, at, bytes);
-                    at += bytes;
-                }
-        }
-
         node_fold* fold_;
         std::vector<nodal_array> arrays_;
-        std::vector<std::vector<std::byte>> outgoing_;  // kept until their sends complete
-        std::vector<std::byte> incoming_;
-        std::vector<MPI_Request> requests_;
     };
 
     /// The exchange of a pass that writes `arrays` (nodal_array::of each).
     [[nodiscard]] pass exchange(std::vector<nodal_array> arrays) { return pass(*this, std::move(arrays)); }
 
 private:
+    [[nodiscard]] static std::size_t band_bytes(const band& b, std::span<const nodal_array> arrays) {
+        std::size_t bytes = 0;
+        for (const auto& a : arrays) bytes += a.blocks * b.count * a.value_bytes;
+        return bytes;
+    }
+    void send(const band& b, int tag, std::span<const nodal_array> arrays) {
+        auto& buffer = outgoing_.emplace_back(band_bytes(b, arrays));
+        std::byte* at = buffer.data();
+        for (const auto& a : arrays)
+            for (std::size_t k = 0; k < a.blocks; ++k) {
+                const std::size_t bytes = b.count * a.value_bytes;
+                std::memcpy(at, a.data + (k * nodes_ + b.first) * a.value_bytes, bytes);
+                at += bytes;
+            }
+        comm_.isend(buffer.data(), buffer.size(), b.other, tag, requests_.emplace_back());
+    }
+    void receive(const band& b, int tag, std::span<const nodal_array> arrays) {
+        incoming_.resize(band_bytes(b, arrays));
+        comm_.recv(incoming_.data(), incoming_.size(), b.other, tag);
+        const std::byte* at = incoming_.data();
+        for (const auto& a : arrays)
+            for (std::size_t k = 0; k < a.blocks; ++k) {
+                const std::size_t bytes = b.count * a.value_bytes;
+                std::memcpy(a.data + (k * nodes_ + b.first) * a.value_bytes, at, bytes);
+                at += bytes;
+            }
+    }
+
     communicator comm_;
     slab_ranks ranks_;
     std::size_t nodes_;
     std::vector<band> bands_;
+    std::vector<std::vector<std::byte>> outgoing_;  // kept until their sends complete
+    std::vector<std::byte> incoming_;
+    std::vector<MPI_Request> requests_;
 };
+
+/// A solver on the ranks of an MPI communicator (solver_options::processes = the shared pointer
+/// make_ranks gives): the gimlet::processes a solver calls, on MPI.
+class ranks final : public processes {
+public:
+    /// The ranks of `comm`.
+    explicit ranks(const communicator& comm = communicator{}) : comm_(comm) {}
+
+    [[nodiscard]] int rank() const override { return comm_.rank(); }
+    [[nodiscard]] int size() const override { return comm_.size(); }
+    void set_up(const slab_layout& layout) override { fold_.emplace(comm_, layout); }
+    [[nodiscard]] int owner(int slab) const override { return fold_->ranks().owner(slab); }
+    void after_colour(int colour, std::span<const nodal_array> arrays) override { fold_->after_colour(colour, arrays); }
+    void finish(std::span<const nodal_array> arrays) override { fold_->finish(arrays); }
+    [[nodiscard]] std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out) override {
+        return comm_.all_to_all(out);
+    }
+    [[nodiscard]] double min(double x) override { return comm_.min(x); }
+    [[nodiscard]] double max(double x) override { return comm_.max(x); }
+    [[nodiscard]] std::uint64_t sum(std::uint64_t n) override { return comm_.sum(n); }
+    [[nodiscard]] std::uint64_t exclusive_sum(std::uint64_t n) override { return comm_.exclusive_sum(n); }
+    [[nodiscard]] exact_sum sum(const exact_sum& part) override { return comm_.sum(part); }
+    void together(const std::function<void()>& f) override { comm_.together(f); }
+
+    /// The communicator.
+    [[nodiscard]] const communicator& comm() const noexcept { return comm_; }
+
+private:
+    communicator comm_;
+    std::optional<node_fold> fold_;
+};
+
+/// The processes of `comm` for solver_options::processes.
+[[nodiscard]] inline std::shared_ptr<processes> make_ranks(const communicator& comm = communicator{}) {
+    return std::make_shared<ranks>(comm);
+}
 
 }  // namespace gimlet::mpi

@@ -44,6 +44,7 @@
 #include <concepts>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -199,6 +200,12 @@ public:
     /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
     [[nodiscard]] const health_events& health() const noexcept { return health_; }
 
+    /// The processes the run is split between (solver_options::processes), or null: one process.
+    [[nodiscard]] gimlet::processes* processes() const noexcept { return options_.processes.get(); }
+    /// Particle i's number in the whole run: its index in one process's store, whatever the
+    /// number of processes (the seeding order, renumbered where the particles are sorted).
+    [[nodiscard]] std::uint64_t ordinal(std::size_t i) const noexcept { return ordinal_.empty() ? i : ordinal_[i]; }
+
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
     // Every particle and node loop of the solver runs in detail::thread_shares' schedule: each
@@ -290,11 +297,14 @@ private:
     };
 
     // Wall-clock time of `f()`, added to `phase` (and to `part`, a part of that phase, if given).
+    // On many processes a stage that throws on one throws on all (processes::together), with the
+    // particle named by its ordinal, before any goes on to the next stage's exchanges.
     template <class F>
-    static void timed(double& phase, F&& f, double* part = nullptr) {
+    void timed(double& phase, F&& f, double* part = nullptr) {
         using clock = std::chrono::steady_clock;
         const auto start = clock::now();
-        f();
+        if (processes()) together(f);
+        else f();
         const double lap = std::chrono::duration<double>(clock::now() - start).count();
         phase += lap;
         if (part) *part += lap;
@@ -351,6 +361,14 @@ private:
     template <class F>
     void for_each_particle_by_slab(F&& f) {
         slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+    }
+    // The same, for a pass that adds into the nodal arrays `arrays` (std::vectors over the grid's
+    // entries): on many processes, the sums of the nodes two processes share are completed in
+    // the one-process order (processes::after_colour).
+    template <class F, class... Arrays>
+    void for_each_particle_by_slab_into(F&& f, Arrays&... arrays) {
+        detail::fold_exchange<sizeof...(Arrays)> exchange{processes(), {nodal_array::of(arrays, grid_.size())...}};
+        slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f), exchange);
     }
     // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
     // or rows given to its view) must be one flag per row of the last axis: `what` names them.
@@ -444,6 +462,10 @@ private:
     static constexpr bool partition_prepares = requires(Part& p, const partition_view_type<const store_type>& v) {
         p.prepare(v);
     };
+    static constexpr bool partition_initializes = requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); };
+    // What runs on many processes so far (detail::check_distributable refuses the rest).
+    static constexpr bool distributable =
+        !multi_field && !has_driven_particles && !axisymmetric && !partition_prepares && !partition_initializes;
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
@@ -476,6 +498,20 @@ private:
     [[noreturn]] void fail(std::size_t i, const std::string& what) const {
         throw numerical_error(describe_particle(particles_[i], steps_, double(time_)) + ": " + what);
     }
+
+    // ---- many processes (solver_options::processes) ---------------------------------------
+    // f() on every process; where it throws on one, it throws on all, the message naming the
+    // particle by its ordinal (describe_particle names it by its index in this process's store).
+    void together(const std::function<void()>& f);
+    [[nodiscard]] std::string with_ordinal(const std::string& message) const;
+    // The particles of this process's slabs kept, in seeding order (the constructor's).
+    void keep_own_particles();
+    // Particles whose stencils start in another process's slabs go there, each process's kept in
+    // ordinal order (after compute_stencils).
+    void migrate();
+    // After a sort: the ordinals renumbered to the one-process order (sort_by_cell's keys are
+    // ordered by slab, and each process owns consecutive slabs).
+    void renumber();
 
     // The stages are friends: each reads and writes what its class comment lists.
     template <Space>
@@ -522,6 +558,7 @@ private:
     step_timings timings_;
     health_events health_;
     mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
+    std::vector<std::uint64_t> ordinal_;  // on many processes, each particle's ordinal (ordinal())
     bool state_touched_ = true;  // the scene's particles are checked before the first step
 };
 
@@ -551,6 +588,11 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     wall_free_.assign(grid_.entries(), vector::Ones());
     grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
     slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
+    if (auto* p = processes()) {
+        detail::check_distributable<!distributable>(options_, lights_.possible());
+        p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
+        keep_own_particles();
+    }
     if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
         compute_stencils();
         slabs_.bucket();
@@ -564,8 +606,11 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::~solver_core() = default;
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 auto solver_core<S, Sh, M, Fields, MultiField, Part>::stable_time_step() const -> real {
-    return detail::stable_time_step(particles_, materials_, grid_, options_, threads(), parallel_threshold, steps_,
-                                    pending_health_);
+    const real dt = detail::stable_time_step(particles_, materials_, grid_, options_, threads(), parallel_threshold, steps_,
+                                             pending_health_);
+    // The least of the processes' steps: C h / max (c + |v|) rounds monotonically in the speed.
+    if (auto* p = processes()) return real(p->min(double(dt)));
+    return dt;
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
@@ -656,6 +701,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils() {
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::check_light_possible() {
     lights_.check_possible(*this);
+    // On many processes, over every process's particles (light particles are refused there so far).
+    if (auto* p = processes(); p && p->max(lights_.possible() ? 1.0 : 0.0) > 0)
+        detail::check_distributable<false>(options_, true);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

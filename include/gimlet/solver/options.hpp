@@ -6,8 +6,11 @@
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/space.hpp"
 
+#include "gimlet/core/processes.hpp"
+
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace gimlet {
@@ -111,6 +114,11 @@ struct solver_options {
     /// stress to match. Two bodies are never averaged together. It keeps per-body, per-node sums,
     /// cleared every step. Off by default (see docs/equations.md).
     bool volumetric_average = false;
+    /// The processes the run is split between (gimlet::mpi::make_ranks: the grid's slabs along
+    /// its last axis, each process the particles of its own); null, the default: one process.
+    /// Every process builds the same scene and runs the same calls; particle states, time steps
+    /// and the library's diagnostics are bitwise those of one process, for any number of them.
+    std::shared_ptr<gimlet::processes> processes;
 
     /// \throws gimlet::invalid_parameter naming the first option outside its valid range, or a
     /// combination refused (USL with cfl > 0.7 or the consistent mass; volume_filter without the

@@ -7,6 +7,7 @@
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/detail/shares.hpp"
+#include "gimlet/core/processes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -18,6 +19,17 @@
 #include <vector>
 
 namespace gimlet::detail {
+
+/// The exchange of a slab pass that writes N nodal arrays, on the processes `on` (none: one
+/// process, and the pass runs as with no_exchange).
+template <std::size_t N>
+struct fold_exchange {
+    processes* on = nullptr;
+    std::array<nodal_array, N> arrays{};
+    [[nodiscard]] bool active() const noexcept { return on != nullptr; }
+    void after_colour(int c) { on->after_colour(c, arrays); }
+    void finish() { on->finish(arrays); }
+};
 
 /// What a slab pass does between its colours and after the last one where the slabs are split
 /// between processes (mpi::node_fold: each node's running sum passes to the process that adds
@@ -67,6 +79,15 @@ public:
     }
     /// The node rows per slab (the last slab may have up to twice as many less one).
     static constexpr int slab_rows = SlabRows;
+
+    /// The slabs for gimlet::processes::set_up, on a grid of `nodes` nodes, `nodes_per_row` a row.
+    [[nodiscard]] slab_layout layout(std::size_t nodes_per_row, std::size_t nodes) const {
+        slab_layout out;
+        for (int s = 0; s < slabs_; ++s) out.first_row.push_back(first_row(s)), out.colour.push_back(colour(s));
+        out.first_row.push_back(rows_);
+        out.slab_rows = SlabRows, out.periodic = periodic_, out.nodes_per_row = nodes_per_row, out.nodes = nodes;
+        return out;
+    }
 
     /// Room for n particles.
     void resize(std::size_t n) { slab_of_.resize(n); }

@@ -14,6 +14,7 @@
 #include "gimlet/multi_field/exchange.hpp"
 #include "gimlet/scene/scene.hpp"
 #include "gimlet/solver/core.hpp"
+#include "gimlet/solver/distributed.hpp"
 #include "gimlet/solver/options.hpp"
 #include "gimlet/solver/particle_passes.hpp"
 #include "gimlet/solver/transfers.hpp"
@@ -197,8 +198,12 @@ private:
         // step's last pass could have computed them: a caller may change positions through a
         // reference to the store kept from an earlier particles() call, which no flag sees.
         core::timed(t.particle_to_grid, [&] { this->compute_stencils(); }, &t.weights);
+        // On many processes, each particle to the process of its stencil's slab.
+        if (this->processes()) core::timed(t.particle_to_grid, [&] { this->migrate(); }, &t.slabs);
         core::timed(t.sort, [&] {
-            if (this->sort_due()) this->sort_by_cell();
+            if (!this->sort_due()) return;
+            this->sort_by_cell();
+            if (this->processes()) this->renumber();
         });
         core::timed(t.particle_to_grid, [&] { this->group_into_slabs(); }, &t.slabs);
         core::timed(t.particle_to_grid, [&] { this->start_grid(); });

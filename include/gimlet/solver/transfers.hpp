@@ -27,7 +27,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
     const auto& v = particles_.template column<fields::velocity>();
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
-    for_each_particle_by_slab([&](std::size_t i) {
+    auto particle = [&](std::size_t i) {
         const real mp = m[i];
         const vector mv = mp * v[i];
         auto at = entries(i);
@@ -66,7 +66,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
                 (void)g;
             }
         });
-    });
+    };
+    if constexpr (Forces) for_each_particle_by_slab_into(particle, grid_.mass, grid_.momentum, grid_.force);
+    else for_each_particle_by_slab_into(particle, grid_.mass, grid_.momentum);
 }
 
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
@@ -76,7 +78,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
     const auto& m = particles_.template column<fields::mass>();
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
-    for_each_particle_by_slab([&](std::size_t i) {
+    auto particle = [&](std::size_t i) {
         const matrix vs = force_stress(i);
         vector mb = m[i] * b;
         if constexpr (store_type::template has<fields::external_acceleration>)
@@ -97,7 +99,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
             grid_.force[e] -= vs * g;
             if (loaded) grid_.force[e] += w * mb;
         });
-    });
+    };
+    for_each_particle_by_slab_into(particle, grid_.force);
 }
 
 // v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
@@ -336,7 +339,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(rea
     };
     if (remap) {
         fill_entries(grid_.momentum, vector::Zero());
-        for_each_particle_by_slab(update);
+        for_each_particle_by_slab_into(update, grid_.momentum);
     } else {
         const auto n = static_cast<std::ptrdiff_t>(particles_.size());
         detail::thread_shares shares(n, threads(), n >= parallel_threshold);

@@ -57,6 +57,8 @@ public:
 
     /// How many particles the last step found light.
     [[nodiscard]] std::size_t count() const noexcept { return list_.size(); }
+    /// Whether any particle can be light (check_possible's answer).
+    [[nodiscard]] bool possible() const noexcept { return possible_; }
     /// Whether particle i is light this step.
     [[nodiscard]] bool is_light(std::size_t i) const { return !list_.empty() && lightness_[i] != lightness::none; }
     /// Whether particle i takes the nodes' reliability-weighted velocity this step (move), not FLIP's.

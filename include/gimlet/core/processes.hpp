@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// gimlet::processes: what a solver asks of the processes it is split between (one MPI rank each,
+/// gimlet::mpi::ranks), without naming MPI: the serial library has no MPI dependency.
+
+#include "gimlet/core/exact_sum.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+namespace gimlet {
+
+/// A nodal array a slab pass writes: `blocks` blocks (velocity fields) of the grid's nodes, each
+/// value copied byte for byte (numbers, fixed-size Eigen vectors), node rows along the last axis
+/// outermost within a block.
+struct nodal_array {
+    /// The first byte of the first value.
+    std::byte* data = nullptr;
+    /// The bytes of one value.
+    std::size_t value_bytes = 0;
+    /// How many blocks of the grid's nodes the array holds.
+    std::size_t blocks = 1;
+
+    /// The array `values`, of whole blocks of `nodes` nodes.
+    template <class T>
+    static nodal_array of(std::vector<T>& values, std::size_t nodes) {
+        static_assert(std::is_trivially_destructible_v<T> && std::is_standard_layout_v<T>,
+                      "nodal_array: values copied byte for byte (numbers, fixed-size Eigen vectors)");
+        return {reinterpret_cast<std::byte*>(values.data()), sizeof(T), nodes ? values.size() / nodes : 0};
+    }
+};
+
+/// The slabs of a grid's scatter schedule (detail::slab_schedule), set up from the global rows.
+struct slab_layout {
+    /// The slabs and the node rows of each: slab s holds rows [first_row[s], first_row[s + 1]).
+    std::vector<int> first_row;
+    /// Each slab's colour (0, 1 or 2): colours scatter in increasing order.
+    std::vector<int> colour;
+    /// The rows per slab (the last slab may have up to twice as many less one); a particle's
+    /// stencil reaches at most the first slab_rows rows of the next slab.
+    int slab_rows = 1;
+    /// Whether the last axis is periodic (the last slab's stencils then reach slab 0).
+    bool periodic = false;
+    /// The grid's nodes per row of the last axis, and in all.
+    std::size_t nodes_per_row = 0, nodes = 0;
+    /// The number of slabs.
+    [[nodiscard]] int slabs() const noexcept { return int(colour.size()); }
+};
+
+/// The processes a solver is split between (solver_options::processes): each owns whole slabs
+/// of the grid along its last axis and the particles whose stencils start in them. The solver
+/// calls every member on every process alike (they are collective); a program's own code that
+/// calls one (diagnostics do) must too. gimlet::mpi::ranks is the MPI implementation.
+class processes {
+public:
+    virtual ~processes() = default;
+
+    /// This process's number, 0 .. size() - 1.
+    [[nodiscard]] virtual int rank() const = 0;
+    /// The number of processes.
+    [[nodiscard]] virtual int size() const = 0;
+
+    /// The solver's slabs, once, before anything else. Throws gimlet::invalid_parameter where a
+    /// process would own no slab.
+    virtual void set_up(const slab_layout& layout) = 0;
+    /// The process that owns slab s.
+    [[nodiscard]] virtual int owner(int slab) const = 0;
+
+    /// A slab pass over `arrays`: after colour c's slabs have scattered on every process (c = 0,
+    /// 1, 2), and after the last (finish), the nodes two processes both add to take every
+    /// contribution in the one-process order.
+    virtual void after_colour(int colour, std::span<const nodal_array> arrays) = 0;
+    virtual void finish(std::span<const nodal_array> arrays) = 0;
+
+    /// Bytes to every process (`out[r]` to process r); returns what each sent here, by process.
+    [[nodiscard]] virtual std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out) = 0;
+    /// The least and greatest of every process's x (exact in any order).
+    [[nodiscard]] virtual double min(double x) = 0;
+    [[nodiscard]] virtual double max(double x) = 0;
+    /// The sum of every process's n, and of those below this one's.
+    [[nodiscard]] virtual std::uint64_t sum(std::uint64_t n) = 0;
+    [[nodiscard]] virtual std::uint64_t exclusive_sum(std::uint64_t n) = 0;
+    /// The exact sum of every process's partial sum.
+    [[nodiscard]] virtual exact_sum sum(const exact_sum& part) = 0;
+    /// f() on every process; if it throws on any, it throws on every one (the lowest failing
+    /// process's message), so that none waits for a process that stopped.
+    virtual void together(const std::function<void()>& f) = 0;
+};
+
+}  // namespace gimlet

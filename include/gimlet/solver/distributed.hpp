@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The solver on many processes (solver_options::processes): each process the particles whose
+/// stencils start in its slabs, in ordinal order, so that every slab pass sums each node in the
+/// one-process order (processes::after_colour) and the run gives one process's bits.
+
+#include "gimlet/solver/core.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace gimlet {
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::together(const std::function<void()>& f) {
+    processes()->together([&] {
+        try {
+            f();
+        } catch (const numerical_error& e) {
+            throw numerical_error(with_ordinal(e.what()));
+        }
+    });
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+std::string solver_core<S, Sh, M, Fields, MultiField, Part>::with_ordinal(const std::string& message) const {
+    // describe_particle's "particle <index> (body": the index in this process's store.
+    static const std::regex named(R"(particle (\d+) \(body)");
+    std::smatch m;
+    if (!std::regex_search(message, m, named)) return message;
+    const auto i = std::size_t(std::stoull(m[1].str()));
+    if (i >= particles_.size()) return message;
+    return m.prefix().str() + "particle " + std::to_string(ordinal(i)) + " (body" + m.suffix().str();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
+    compute_stencils();
+    const auto& slab = slabs_.slab_of();
+    const int me = processes()->rank();
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+        if (processes()->owner(int(slab[i])) == me) kept.push_back(i);
+    store_type mine;
+    mine.resize(kept.size());
+    particles_.for_each_column([&](auto tag, const auto& column) {
+        auto& to = mine.template column<decltype(tag)>();
+        for (std::size_t k = 0; k < kept.size(); ++k) to[k] = column[kept[k]];
+    });
+    particles_ = std::move(mine);
+    ordinal_.assign(kept.begin(), kept.end());
+    compute_stencils();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
+    auto& p = *processes();
+    const int me = p.rank();
+    const auto ranks = std::size_t(p.size());
+    const auto& slab = slabs_.slab_of();
+    // A particle's record: its ordinal, then each column's value, byte for byte.
+    std::size_t record = sizeof(std::uint64_t);
+    particles_.for_each_column([&](auto, const auto& column) { record += sizeof(column[0]); });
+    std::vector<std::vector<std::byte>> out(ranks);
+    std::vector<std::size_t> staying;
+    staying.reserve(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        const int to = p.owner(int(slab[i]));
+        if (to == me) {
+            staying.push_back(i);
+            continue;
+        }
+        auto& bytes = out[std::size_t(to)];
+        std::size_t at = bytes.size();
+        bytes.resize(at + record);
+        std::memcpy(bytes.data() + at, &ordinal_[i], sizeof(std::uint64_t));
+        at += sizeof(std::uint64_t);
+        particles_.for_each_column([&](auto, const auto& column) {
+            std::memcpy(bytes.data() + at, &column[i], sizeof(column[i]));
+            at += sizeof(column[i]);
+        });
+    }
+    const auto in = p.all_to_all(out);
+    std::size_t arriving = 0;
+    for (const auto& bytes : in) arriving += bytes.size() / record;
+    if (arriving == 0 && staying.size() == particles_.size()) return;  // nobody moved here
+    // The staying particles and the arrivals, merged in ordinal order: (ordinal, source), the
+    // source an index into the store, or particles_.size() + k for the k-th arrival.
+    std::vector<const std::byte*> arrival;
+    arrival.reserve(arriving);
+    for (const auto& bytes : in)
+        for (std::size_t at = 0; at < bytes.size(); at += record) arrival.push_back(bytes.data() + at);
+    std::vector<std::pair<std::uint64_t, std::size_t>> order;
+    order.reserve(staying.size() + arrival.size());
+    for (std::size_t i : staying) order.push_back({ordinal_[i], i});
+    for (std::size_t k = 0; k < arrival.size(); ++k) {
+        std::uint64_t n = 0;
+        std::memcpy(&n, arrival[k], sizeof n);
+        order.push_back({n, particles_.size() + k});
+    }
+    std::sort(order.begin(), order.end());
+    store_type merged;
+    merged.resize(order.size());
+    std::size_t offset = sizeof(std::uint64_t);  // of the column in a record
+    particles_.for_each_column([&](auto tag, const auto& column) {
+        auto& to = merged.template column<decltype(tag)>();
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const std::size_t from = order[k].second;
+            if (from < particles_.size()) to[k] = column[from];
+            else std::memcpy(static_cast<void*>(&to[k]), arrival[from - particles_.size()] + offset, sizeof(to[k]));
+        }
+        offset += sizeof(column[0]);
+    });
+    particles_ = std::move(merged);
+    ordinal_.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) ordinal_[k] = order[k].first;
+    compute_stencils();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::renumber() {
+    const std::uint64_t below = processes()->exclusive_sum(particles_.size());
+    for (std::size_t k = 0; k < ordinal_.size(); ++k) ordinal_[k] = below + k;
+}
+
+}  // namespace gimlet

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// The solver on many ranks (solver_options::processes): particle states, time steps and the
+// conservation sums bitwise those of one process, for every scheme and one or two threads; a
+// block that crosses every rank many times on a periodic axis keeps its particles and its mass;
+// refusals name what is not distributed yet.
+#include <gimlet/gimlet.hpp>
+#include <gimlet/mpi/slabs.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+using S = gimlet::space<2>;
+using elastic_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>;
+
+// Sulsky, Chen and Schreyer's two elastic disks (1994, section 5.1), on a finer cell: they
+// cross slabs along both axes before, during and after the collision.
+gimlet::scene::scene<S, gimlet::elastic_material> two_disks(double cell) {
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector::Ones();
+    gs.cell = cell;
+    gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
+    gimlet::scene::scene<S, gimlet::elastic_material> scene(gs);
+    const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);
+    scene.add_body(gimlet::scene::ball<S>(S::vector(0.25, 0.25), 0.2), mat, S::vector(0.1, 0.1), 2, "lower disk");
+    scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-0.1, -0.1), 2, "upper disk");
+    return scene;
+}
+
+// Every particle of `many` (this rank's) has the bits of the particle of `one` with its ordinal.
+template <class Solver>
+std::size_t differing_particles(const Solver& many, const Solver& one) {
+    std::size_t differ = 0;
+    const auto& a = many.particles();
+    const auto& b = one.particles();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const auto j = std::size_t(many.ordinal(i));
+        bool same = j < b.size();
+        a.for_each_column([&](auto tag, const auto& column) {
+            const auto& other = b.template column<decltype(tag)>();
+            same = same && std::memcmp(&column[i], &other[j], sizeof(column[i])) == 0;
+        });
+        differ += same ? 0 : 1;
+    }
+    return differ;
+}
+
+}  // namespace
+
+TEST_CASE("solver on many ranks: the two disks' particles, steps and sums are one process's bits", "[mpi][solver]") {
+    const gimlet::mpi::communicator comm;
+    const auto scene = two_disks(0.025);
+    for (auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usl, gimlet::update_scheme::usf})
+        for (int threads : {1, 2}) {
+            gimlet::solver_options<S> one_options;
+            one_options.scheme = scheme;
+            one_options.threads = threads;
+            one_options.sort_interval = 25;  // sorted, renumbered, on every rank alike
+            auto many_options = one_options;
+            many_options.processes = gimlet::mpi::make_ranks(comm);
+            elastic_solver one(scene, one_options), many(scene, many_options);
+            INFO("rank " << comm.rank() << " of " << comm.size() << ", scheme " << int(scheme) << ", threads " << threads);
+            std::size_t steps_differ = 0;
+            for (int k = 0; k < 260; ++k)  // past the collision (about 1.1 s, step 150)
+                steps_differ += one.step() == many.step() ? 0 : 1;
+            CHECK(steps_differ == 0);
+            CHECK(comm.sum(std::uint64_t(many.particles().size())) == one.particles().size());
+            CHECK(differing_particles(many, one) == 0);
+            const auto a = gimlet::diagnostics::sample_conservation(one);
+            const auto b = gimlet::diagnostics::sample_conservation(many);
+            CHECK(std::memcmp(&a.kinetic, &b.kinetic, sizeof a.kinetic) == 0);
+            CHECK(std::memcmp(&a.internal, &b.internal, sizeof a.internal) == 0);
+            CHECK(std::memcmp(&a.mass, &b.mass, sizeof a.mass) == 0);
+            CHECK(std::memcmp(a.momentum.data(), b.momentum.data(), sizeof(double) * 2) == 0);
+        }
+}
+
+TEST_CASE("solver on many ranks: a block crossing every rank on a periodic axis keeps its particles", "[mpi][solver]") {
+    const gimlet::mpi::communicator comm;
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(0.2, 0.4);
+    gs.cell = 0.02;
+    gs.bc = {gimlet::boundary::slip, gimlet::boundary::periodic};
+    gimlet::scene::scene<S, gimlet::elastic_material> scene(gs);
+    const auto mat = gimlet::make_elastic_material(1000.0, 1e5, 0.3);
+    scene.add_body(gimlet::scene::box<S>(S::vector(0.04, 0.1), S::vector(0.16, 0.18)), mat, S::vector(0, 40.0), 2, "block");
+    gimlet::solver_options<S> options;
+    options.processes = gimlet::mpi::make_ranks(comm);
+    elastic_solver many(scene, options), one(scene, gimlet::solver_options<S>{});
+    const std::uint64_t count = one.particles().size();
+    const double mass = gimlet::diagnostics::total_mass(one);
+    // 40 m/s for 0.02 s: twice round the 0.4 m periodic axis, through every rank.
+    std::size_t lost = 0, mass_changed = 0, differ = 0;
+    while (many.time() < 0.02) {
+        one.step(), many.step();
+        lost += comm.sum(std::uint64_t(many.particles().size())) == count ? 0 : 1;
+        mass_changed += gimlet::diagnostics::total_mass(many) == mass ? 0 : 1;
+    }
+    differ = differing_particles(many, one);
+    INFO("rank " << comm.rank() << " of " << comm.size() << ", steps " << many.steps());
+    CHECK(many.steps() > 100);
+    CHECK(lost == 0);
+    CHECK(mass_changed == 0);
+    CHECK(differ == 0);
+    // Every ordinal once.
+    std::vector<std::uint8_t> seen(count, 0);
+    for (std::size_t i = 0; i < many.particles().size(); ++i) seen[many.ordinal(i)] += 1;
+    std::vector<std::uint8_t> all(count, 0);
+    MPI_Allreduce(seen.data(), all.data(), int(count), MPI_UINT8_T, MPI_SUM, comm.get());
+    CHECK(std::count(all.begin(), all.end(), std::uint8_t(1)) == std::ptrdiff_t(count));
+}
+
+TEST_CASE("solver on many ranks: what is not distributed yet is refused by name", "[mpi][solver]") {
+    const gimlet::mpi::communicator comm;
+    const auto scene = two_disks(0.05);
+    gimlet::solver_options<S> options;
+    options.processes = gimlet::mpi::make_ranks(comm);
+    options.volumetric_average = true;
+    CHECK_THROWS_WITH(elastic_solver(scene, options), Catch::Contains("volumetric_average") && Catch::Contains("many processes"));
+    options.volumetric_average = false;
+    options.consistent_mass_iterations = 1;
+    CHECK_THROWS_WITH(elastic_solver(scene, options), Catch::Contains("consistent_mass_iterations"));
+    options.consistent_mass_iterations = 0;
+    using contact_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen>;
+    CHECK_THROWS_WITH(contact_solver(scene, options), Catch::Contains("multi-field contact"));
+    // A rank count above the slabs: one cell, with the cubic B-spline's ghost nodes beyond each
+    // side, is 10 node rows in 3 slabs of 3.
+    gimlet::grid_spec<S> gs;
+    gs.lower = S::vector::Zero();
+    gs.upper = S::vector(1.0, 0.05);
+    gs.cell = 0.05;
+    gimlet::scene::scene<S, gimlet::elastic_material> flat(gs);
+    flat.add_body(gimlet::scene::box<S>(S::vector(0.2, 0.0), S::vector(0.8, 0.05)),
+                  gimlet::make_elastic_material(1000.0, 1000.0, 0.3), S::vector::Zero(), 2, "strip");
+    using cubic_solver = gimlet::solver<S, gimlet::shape::bspline_cubic, gimlet::elastic_material>;
+    if (comm.size() > 3) CHECK_THROWS_WITH(cubic_solver(flat, options), Catch::Contains("MPI ranks") && Catch::Contains("1 .. 3"));
+    else CHECK_NOTHROW(cubic_solver(flat, options));
+}
