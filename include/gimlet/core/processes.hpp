@@ -52,6 +52,17 @@ struct slab_layout {
     [[nodiscard]] int slabs() const noexcept { return int(colour.size()); }
 };
 
+/// Node rows two processes both hold: the first slab_rows rows of a slab whose slab below is the
+/// other process's (nodes [first, first + count) of every block), and the other process.
+struct shared_band {
+    /// The first node and the number of nodes, in each block.
+    std::size_t first = 0, count = 0;
+    /// The other process.
+    int other = 0;
+    /// The upper slab's index (it names the band in both processes).
+    int slab = 0;
+};
+
 /// The processes a solver is split between (solver_options::processes): each owns whole slabs
 /// of the grid along its last axis and the particles whose stencils start in them. The solver
 /// calls every member on every process alike (they are collective); a program's own code that
@@ -76,6 +87,12 @@ public:
     /// contribution in the one-process order.
     virtual void after_colour(int colour, std::span<const nodal_array> arrays) = 0;
     virtual void finish(std::span<const nodal_array> arrays) = 0;
+
+    /// The bands this process shares with others (after set_up), in slab order.
+    [[nodiscard]] virtual std::span<const shared_band> bands() const = 0;
+    /// `mine[b]` to the other process of bands()[b]; returns what that process passed for the
+    /// same band. For values both processes combine in an order-free way (a maximum).
+    [[nodiscard]] virtual std::vector<std::vector<std::byte>> swap(const std::vector<std::vector<std::byte>>& mine) = 0;
 
     /// Bytes to every process (`out[r]` to process r); returns what each sent here, by process.
     [[nodiscard]] virtual std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out) = 0;

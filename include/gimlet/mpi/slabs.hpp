@@ -99,13 +99,42 @@ public:
             b.first = std::size_t(first) * layout.nodes_per_row;
             b.count = std::size_t(end - first) * layout.nodes_per_row;
             bands_.push_back(b);
+            shared_.push_back({b.first, b.count, b.other, u});
         }
-        const int tag_limit = 2 * L + 2;
+        const int tag_limit = 3 * L + 2;
         int* upper_bound = nullptr;
         int found = 0;
         MPI_Comm_get_attr(comm.get(), MPI_TAG_UB, &upper_bound, &found);
         require(!found || *upper_bound >= tag_limit, "slabs along the last axis", double(L),
-                "at most " + std::to_string(found ? *upper_bound / 2 - 1 : 0) + " (this MPI's largest message tag / 2)");
+                "at most " + std::to_string(found ? *upper_bound / 3 - 1 : 0) + " (this MPI's largest message tag / 3)");
+    }
+
+    /// The bands this rank shares with others, in slab order.
+    [[nodiscard]] std::span<const shared_band> bands() const noexcept { return shared_; }
+
+    /// `mine[b]` to the other rank of bands()[b]; returns what it passed for the same band.
+    [[nodiscard]] std::vector<std::vector<std::byte>> swap(const std::vector<std::vector<std::byte>>& mine) {
+        // Tags above the fold's (2 x slabs + 2): the band's upper slab names it on both ranks.
+        const int base = 2 * ranks_.slabs() + 2;
+        std::vector<std::uint64_t> sizes(bands_.size()), theirs(bands_.size());
+        std::vector<MPI_Request> requests;
+        for (std::size_t b = 0; b < bands_.size(); ++b) {
+            sizes[b] = mine[b].size();
+            comm_.isend(&sizes[b], sizeof(std::uint64_t), bands_[b].other, base + shared_[b].slab, requests.emplace_back());
+            comm_.irecv(&theirs[b], sizeof(std::uint64_t), bands_[b].other, base + shared_[b].slab, requests.emplace_back());
+        }
+        MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        requests.clear();
+        std::vector<std::vector<std::byte>> in(bands_.size());
+        for (std::size_t b = 0; b < bands_.size(); ++b) {
+            in[b].resize(theirs[b]);
+            if (!mine[b].empty())
+                comm_.isend(mine[b].data(), mine[b].size(), bands_[b].other, base + shared_[b].slab, requests.emplace_back());
+            if (!in[b].empty())
+                comm_.irecv(in[b].data(), in[b].size(), bands_[b].other, base + shared_[b].slab, requests.emplace_back());
+        }
+        MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        return in;
     }
 
     /// The ranks that own the slabs.
@@ -184,6 +213,7 @@ private:
     slab_ranks ranks_;
     std::size_t nodes_;
     std::vector<band> bands_;
+    std::vector<shared_band> shared_;  // bands_ as processes::bands gives them
     std::vector<std::vector<std::byte>> outgoing_;  // kept until their sends complete
     std::vector<std::byte> incoming_;
     std::vector<MPI_Request> requests_;
@@ -202,6 +232,10 @@ public:
     [[nodiscard]] int owner(int slab) const override { return fold_->ranks().owner(slab); }
     void after_colour(int colour, std::span<const nodal_array> arrays) override { fold_->after_colour(colour, arrays); }
     void finish(std::span<const nodal_array> arrays) override { fold_->finish(arrays); }
+    [[nodiscard]] std::span<const shared_band> bands() const override { return fold_->bands(); }
+    [[nodiscard]] std::vector<std::vector<std::byte>> swap(const std::vector<std::vector<std::byte>>& mine) override {
+        return fold_->swap(mine);
+    }
     [[nodiscard]] std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out) override {
         return comm_.all_to_all(out);
     }

@@ -14,9 +14,11 @@
 #include "gimlet/core/detail/shares.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/grid.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/multi_field/correct.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -76,25 +78,33 @@ public:
     /// each block counts its shared nodes, fields and pairs, the blocks' offsets follow in node
     /// order, and each block fills its part. The arrays are those of one pass in node order,
     /// whatever the thread count.
+    ///
+    /// On many processes (`on`), each finds the nodes of its own rows and bands (whose masses
+    /// the scatter completed on both sides, so both find the same shared nodes there):
+    /// for_each_particle(rows, f, array) then completes the mass gradients' sums in the bands
+    /// (a nodal array, the scatter's exchange), and the reaches, maxima, are swapped per band.
     template <class Stencils, class Masses, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
                            const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
-                           int threads = 1, bool parallel = false) {
+                           int threads = 1, bool parallel = false, gimlet::processes* on = nullptr) {
         count_shared(grid, cutoff, step, time, threads, parallel);
         list_shared(grid, cutoff, fields_per_body, threads, parallel);
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));
         slip_fraction_.assign(shared_pair_normal_.size(), real(0));
         engaged_.assign(shared_.size(), 0);
-        if (shared_.empty()) return;
+        // (On many processes every process takes part in the exchanges below, shared nodes or not.)
+        if (shared_.empty() && !on) return;
         // The node rows of the last axis that hold a shared node: for_each_particle may skip
         // the particles whose stencils reach none of them.
         const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
         shared_row_.assign(rows, 0);
         for (const shared_node& sn : shared_) shared_row_[std::size_t(grid.layer(sn.node))] = 1;
-        sum_mass_gradients(grid, stencils, mass, entries_of, for_each_particle);
+        if (on) sum_mass_gradients_across(grid, stencils, mass, entries_of, for_each_particle);
+        else sum_mass_gradients(grid, stencils, mass, entries_of, for_each_particle);
         normals(threads, parallel);
         reaches(grid, stencils, entries_of, for_each_particle);
+        if (on) combine_reaches(*on);
     }
 
     /// At every node shared by two or more fields, let the contact policy correct the fields'
@@ -339,6 +349,65 @@ private:
         });
     }
 
+    // sum_mass_gradients on many processes: the same sums, into a nodal array (field x node)
+    // whose bands the scatter's exchange completes in the one-process order, then copied to
+    // the shared fields.
+    template <class Stencils, class Masses, class Entries, class ForEach>
+    void sum_mass_gradients_across(const grid<S>& grid, const Stencils& stencils, const Masses& mass,
+                                   const Entries& entries_of, ForEach& for_each_particle) {
+        const std::size_t nodes = grid.size();
+        gradient_.assign(grid.entries(), vector::Zero());
+        for_each_particle(shared_row_, [&](std::size_t i) {
+            auto entry = entries_of(i);
+            const real mp = mass[i];
+            stencils[i].for_each([&](std::size_t node, real, const vector& g) {
+                const std::size_t e = entry(node);  // asked at every node, in order
+                const std::ptrdiff_t s = shared_index_[node];
+                if (s < 0) return;
+                const shared_node& sn = shared_[std::size_t(s)];
+                const std::size_t field = (e - node) / nodes;
+                for (std::size_t a = 0; a < sn.count; ++a)
+                    if (shared_field_[sn.first_field + a] == field) {
+                        gradient_[e] += mp * g;
+                        return;
+                    }
+            });
+        }, gradient_);
+        for (const shared_node& sn : shared_)
+            for (std::size_t a = 0; a < sn.count; ++a)
+                shared_normal_[sn.first_field + a] = gradient_[shared_field_[sn.first_field + a] * nodes + sn.node];
+    }
+
+    // The reaches, maxima over each process's particles, combined over the bands' shared nodes
+    // (the same nodes, fields and pairs in the same order on both processes of a band).
+    void combine_reaches(gimlet::processes& on) {
+        const auto bands = on.bands();
+        auto in_band = [&](const shared_band& b, const shared_node& sn) { return sn.node >= b.first && sn.node < b.first + b.count; };
+        std::vector<std::vector<std::byte>> mine(bands.size());
+        for (std::size_t b = 0; b < bands.size(); ++b)
+            for (const shared_node& sn : shared_) {
+                if (!in_band(bands[b], sn)) continue;
+                const std::size_t bytes = sn.count * sn.count * sizeof(real), at = mine[b].size();
+                mine[b].resize(at + bytes);
+                std::memcpy(mine[b].data() + at, shared_reach_.data() + sn.first_pair, bytes);
+            }
+        const auto theirs = on.swap(mine);
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+            require(theirs[b].size() == mine[b].size(), "shared-node reaches passed between processes (bytes)",
+                    double(theirs[b].size()), std::to_string(mine[b].size()) + ": the same shared nodes on both sides of a band");
+            std::size_t at = 0;
+            for (const shared_node& sn : shared_) {
+                if (!in_band(bands[b], sn)) continue;
+                for (std::size_t k = 0; k < sn.count * sn.count; ++k, at += sizeof(real)) {
+                    real other;
+                    std::memcpy(&other, theirs[b].data() + at, sizeof(real));
+                    real& r = shared_reach_[sn.first_pair + k];
+                    r = std::max(r, other);
+                }
+            }
+        }
+    }
+
     // The fields' unit normals and each pair's normal, node by node.
     void normals(int threads, bool parallel) {
         const auto shared_n = static_cast<std::ptrdiff_t>(shared_.size());
@@ -442,6 +511,7 @@ private:
     std::vector<std::uint64_t> engaged_;
     std::vector<real> m_;
     std::vector<vector> p_, p_before_, trial_velocity_;
+    std::vector<vector> gradient_;  // on many processes: the mass gradients per field and node
 };
 
 }  // namespace gimlet::multi_field

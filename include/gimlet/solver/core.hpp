@@ -379,9 +379,16 @@ private:
     }
     // The same as for_each_particle_by_slab, for the particles of the slabs whose stencils can
     // reach a node row flagged in `rows` (slab_schedule::for_each_reaching).
-    template <class F>
-    void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f) {
-        slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+    // `arrays`: the nodal arrays the pass adds into, as for_each_particle_by_slab_into.
+    template <class F, class... Arrays>
+    void for_each_particle_by_slab_reaching(const std::vector<std::uint8_t>& rows, F&& f, Arrays&... arrays) {
+        if constexpr (sizeof...(Arrays) == 0) {
+            slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
+        } else {
+            detail::fold_exchange<sizeof...(Arrays)> exchange{processes(), {nodal_array::of(arrays, grid_.size())...}};
+            slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(),
+                                     std::forward<F>(f), exchange);
+        }
     }
 
     // ---- transfers (solver/transfers.hpp): P2G, the grid update, G2P with the light nodes
@@ -465,7 +472,7 @@ private:
     static constexpr bool partition_initializes = requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); };
     // What runs on many processes so far (detail::check_distributable refuses the rest).
     static constexpr bool distributable =
-        !multi_field && !has_driven_particles && !axisymmetric && !partition_prepares && !partition_initializes;
+        !has_driven_particles && !axisymmetric && !partition_prepares && !partition_initializes && fields_per_body == 1;
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
@@ -711,11 +718,11 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
     exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
                                 particles_.template column<fields::mass>(), fields_per_body,
                                 [&](std::size_t i) { return entries(i); },
-                                [&](const std::vector<std::uint8_t>& rows, auto&& f) {
-                                    for_each_particle_by_slab_reaching(rows, f);
+                                [&](const std::vector<std::uint8_t>& rows, auto&& f, auto&... arrays) {
+                                    for_each_particle_by_slab_reaching(rows, f, arrays...);
                                 },
                                 threads(),
-                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold);
+                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold, processes());
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

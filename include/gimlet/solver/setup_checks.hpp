@@ -67,16 +67,16 @@ void check_options_for(const solver_options<S>& options, bool has_reference_isen
 }
 
 /// On many processes (solver_options::processes): what the distributed step does not do yet,
-/// refused by name. `Unsupported`: the solver's multi-field contact, driven particles, an
-/// axisymmetric space or a partition with hooks; `light_possible`: whether any particle can be
+/// refused by name. `Unsupported`: driven particles, an axisymmetric space or a partition of
+/// bodies into several fields; `light_possible`: whether any particle can be
 /// light (stages::light_particles), over the whole scene.
 template <bool Unsupported, class S>
 void check_distributable(const solver_options<S>& options, bool light_possible) {
     const std::string what = "on many processes (solver_options::processes), which do not distribute it yet";
     if constexpr (Unsupported)
         throw invalid_parameter("solver_options::processes with this solver", "set",
-                                "null: multi-field contact, partitions, driven particles and axisymmetric spaces run " +
-                                    std::string("on one process so far"));
+                                "null: partitions of bodies into fields (self-contact), driven particles and "
+                                "axisymmetric spaces run on one process so far");
     require(options.consistent_mass_iterations == 0, "consistent_mass_iterations", options.consistent_mass_iterations,
             "0 " + what);
     if (options.volume_filter) throw invalid_parameter("volume_filter", "true", "false " + what);

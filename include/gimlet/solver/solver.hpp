@@ -228,7 +228,8 @@ private:
     real closing_limited(real dt) const {
         if constexpr (C::multi_field) {
             if (!(this->options_.contact_closure > 0)) return dt;
-            const real speed = this->exchange_.closing_speed(this->grid_, real(2) * this->grid_.cell());
+            real speed = this->exchange_.closing_speed(this->grid_, real(2) * this->grid_.cell());
+            if (auto* p = this->processes()) speed = real(p->max(double(speed)));  // a maximum: exact in any order
             if (speed > 0) dt = std::min(dt, real(this->options_.contact_closure) * this->grid_.cell() / speed);
         }
         return dt;
