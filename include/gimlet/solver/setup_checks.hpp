@@ -77,8 +77,6 @@ void check_distributable(const solver_options<S>& options, bool light_possible) 
         throw invalid_parameter("solver_options::processes with this solver", "set",
                                 "null: partitions of bodies into fields (self-contact), driven particles and "
                                 "axisymmetric spaces run on one process so far");
-    require(options.consistent_mass_iterations == 0, "consistent_mass_iterations", options.consistent_mass_iterations,
-            "0 " + what);
     if (options.volume_filter) throw invalid_parameter("volume_filter", "true", "false " + what);
     if (options.volumetric_average) throw invalid_parameter("volumetric_average", "true", "false " + what);
     if (light_possible)

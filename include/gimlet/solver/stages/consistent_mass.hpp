@@ -162,7 +162,8 @@ private:
     }
 
     // M a = sum_p S_ip m_p (sum_j S_jp a_j): each particle gathers from a^(j) and scatters its
-    // share into the product in one pass, slab by slab (a fixed summation order whatever the
+    // share into the product in one pass (on many processes completed in the bands, in the
+    // one-process order: a band's heavy nodes are heavy on both sides, so both clear them), slab by slab (a fixed summation order whatever the
     // thread count; a^(j) is only read in the pass, so the gathers see the same values in any
     // order). Each particle's share is scattered over its nodes above the cut-off only, its
     // weights there renormalised to one: sum_i (M a)_i is then sum_p m_p a_p = sum_j m_j a_j
@@ -171,7 +172,7 @@ private:
     // records them, with its weight on the heavy nodes and its kind.
     template <class Core>
     void multiply_listing(Core& c) {
-        c.for_each_particle_by_slab([&](std::size_t i) {
+        c.for_each_particle_by_slab_into([&](std::size_t i) {
             auto at = c.entries(i);
             std::uint32_t* out = &entry_[i * Nodes];
             vector ap = vector::Zero();
@@ -189,21 +190,21 @@ private:
             heavy_[i] = heavy;
             kind_[i] = held ? kind_held : all_heavy ? kind_all_heavy : kind_some_light;
             scatter_listed(c, i, ap);
-        });
+        }, product_);
     }
 
     // The same sums from the lists, with the same operands in the same order (a held particle
     // scatters without its gathered sum).
     template <class Core>
     void multiply_listed(Core& c) {
-        c.for_each_particle_by_slab([&](std::size_t i) {
+        c.for_each_particle_by_slab_into([&](std::size_t i) {
             vector ap = vector::Zero();
             if (kind_[i] != kind_held) {
                 const std::uint32_t* listed = &entry_[i * Nodes];
                 c.stencils_[i].for_each([&](std::size_t, real w, const vector&) { ap += w * accel_[*listed++]; });
             }
             scatter_listed(c, i, ap);
-        });
+        }, product_);
     }
 
     // Particle i's share of M a, given its gathered sum_j S_jp a_j, scattered through its list.
