@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -142,6 +143,23 @@ TEST_CASE("solver on many ranks: a block crossing every rank on a periodic axis 
     std::vector<std::uint8_t> all(count, 0);
     MPI_Allreduce(seen.data(), all.data(), int(count), MPI_UINT8_T, MPI_SUM, comm.get());
     CHECK(std::count(all.begin(), all.end(), std::uint8_t(1)) == std::ptrdiff_t(count));
+}
+
+TEST_CASE("solver on many ranks: a bad particle on one rank stops every rank, named by its ordinal", "[mpi][solver]") {
+    const gimlet::mpi::communicator comm;
+    gimlet::solver_options<S> options;
+    options.processes = gimlet::mpi::make_ranks(comm);
+    elastic_solver many(two_disks(0.05), options);
+    for (int k = 0; k < 5; ++k) many.step();
+    // Particle 150 (of the lower disk) is on one rank only; its velocity turns NaN there.
+    int here = 0;
+    for (std::size_t i = 0; i < many.particles().size(); ++i)
+        if (many.ordinal(i) == 150) {
+            many.particles().template column<gimlet::fields::velocity>()[i][0] = std::numeric_limits<double>::quiet_NaN();
+            here = 1;
+        }
+    CHECK(comm.sum(std::uint64_t(here)) == 1);
+    CHECK_THROWS_WITH(many.step(), Catch::Contains("particle 150 (body 0)") && Catch::Contains("velocity"));
 }
 
 TEST_CASE("solver on many ranks: what is not distributed yet is refused by name", "[mpi][solver]") {

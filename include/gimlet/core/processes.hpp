@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -104,6 +105,9 @@ public:
     [[nodiscard]] virtual std::uint64_t exclusive_sum(std::uint64_t n) = 0;
     /// The exact sum of every process's partial sum.
     [[nodiscard]] virtual exact_sum sum(const exact_sum& part) = 0;
+    /// The text of the lowest process that passes one (`mine` not null), on every process; empty
+    /// where none does.
+    [[nodiscard]] virtual std::string share(const std::string* mine) = 0;
     /// f() on every process; if it throws on any, it throws on every one (the lowest failing
     /// process's message), so that none waits for a process that stopped.
     virtual void together(const std::function<void()>& f) = 0;

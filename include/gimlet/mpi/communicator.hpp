@@ -90,6 +90,21 @@ public:
         return exact_sum::from_digits(total);
     }
 
+    /// The text of the lowest rank that passes one (`mine` not null), on every rank; empty where
+    /// none does.
+    [[nodiscard]] std::string share(const std::string* mine) const {
+        int first = mine ? rank_ : size_;
+        int lowest = size_;
+        MPI_Allreduce(&first, &lowest, 1, MPI_INT, MPI_MIN, comm_);
+        if (lowest == size_) return {};
+        std::string text = rank_ == lowest ? *mine : std::string();
+        int length = int(text.size());
+        MPI_Bcast(&length, 1, MPI_INT, lowest, comm_);
+        text.resize(std::size_t(length));
+        MPI_Bcast(text.data(), length, MPI_CHAR, lowest, comm_);
+        return text;
+    }
+
     /// f() on every process; if it throws on any, every process throws: the lowest failing
     /// rank's exception where that is this process, otherwise a gimlet::numerical_error with its
     /// message and rank. Call it where every process reaches the same call, so that a failure on
@@ -107,17 +122,14 @@ public:
             caught = std::current_exception();
             message = "an exception that is not a std::exception";
         }
-        int first = caught ? rank_ : size_;
-        int lowest = size_;
-        MPI_Allreduce(&first, &lowest, 1, MPI_INT, MPI_MIN, comm_);
-        if (lowest == size_) return;
-        // The lowest failing rank's message, to every process.
-        int length = rank_ == lowest ? int(message.size()) : 0;
-        MPI_Bcast(&length, 1, MPI_INT, lowest, comm_);
-        message.resize(std::size_t(length));
-        MPI_Bcast(message.data(), length, MPI_CHAR, lowest, comm_);
+        // The lowest failing rank's message (and rank), to every process.
+        const std::string tagged = std::to_string(rank_) + " " + message;
+        const std::string first = share(caught ? &tagged : nullptr);
+        if (first.empty()) return;
+        const std::size_t space = first.find(' ');
+        const int lowest = std::stoi(first.substr(0, space));
         if (rank_ == lowest) std::rethrow_exception(caught);
-        throw numerical_error("rank " + std::to_string(lowest) + " of " + std::to_string(size_) + ": " + message);
+        throw numerical_error("rank " + std::to_string(lowest) + " of " + std::to_string(size_) + ": " + first.substr(space + 1));
     }
 
     /// Every process's bytes to every process (`out[r]` to rank r); returns what each rank sent

@@ -244,6 +244,7 @@ public:
     [[nodiscard]] std::uint64_t sum(std::uint64_t n) override { return comm_.sum(n); }
     [[nodiscard]] std::uint64_t exclusive_sum(std::uint64_t n) override { return comm_.exclusive_sum(n); }
     [[nodiscard]] exact_sum sum(const exact_sum& part) override { return comm_.sum(part); }
+    [[nodiscard]] std::string share(const std::string* mine) override { return comm_.share(mine); }
     void together(const std::function<void()>& f) override { comm_.together(f); }
 
     /// The communicator.

@@ -87,7 +87,9 @@ public:
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
                            const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
                            int threads = 1, bool parallel = false, gimlet::processes* on = nullptr) {
-        count_shared(grid, cutoff, step, time, threads, parallel);
+        // On many processes a node with too many fields on one stops all before the exchanges below.
+        if (on) on->together([&] { count_shared(grid, cutoff, step, time, threads, parallel); });
+        else count_shared(grid, cutoff, step, time, threads, parallel);
         list_shared(grid, cutoff, fields_per_body, threads, parallel);
         shared_reach_.assign(shared_pair_normal_.size(), -std::numeric_limits<real>::infinity());
         normal_fraction_.assign(shared_pair_normal_.size(), real(1));

@@ -476,18 +476,30 @@ private:
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
+        if (processes()) return count_health_across();
         pending_health_.commit(health_, steps_, [&](std::size_t i) {
             return describe_particle(particles_[i], steps_, double(time_));
         });
     }
+    // The same on many processes: the counts summed, the first the lowest ordinal's.
+    void count_health_across();
 
     // State set before the first step or changed between steps (by the user or a restart) is
     // checked before anything uses it, so a bad value is blamed on its own particle, not on a
     // neighbour or on the time step it would spoil.
     void check_pending() {
+        if (processes()) return check_pending_across();
         if (!state_touched_) return;
         check_particles();
         check_light_possible();  // the masses or volumes may have changed
+        state_touched_ = false;
+    }
+    // The same on many processes: every process checks where any was touched, and a bad
+    // particle on one stops all (together) before the collectives that follow.
+    void check_pending_across() {
+        if (processes()->max(state_touched_ ? 1.0 : 0.0) == 0) return;
+        together([&] { check_particles(); });
+        check_light_possible();
         state_touched_ = false;
     }
 

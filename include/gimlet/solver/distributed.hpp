@@ -41,6 +41,31 @@ std::string solver_core<S, Sh, M, Fields, MultiField, Part>::with_ordinal(const 
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::count_health_across() {
+    auto& p = *processes();
+    detail::pending_health& pending = pending_health_;
+    // Whether every process has the guards of this step (a process whose particles were touched
+    // since has none: then none counts them, as one process would not).
+    const bool mine = pending.valid && pending.step == steps_;
+    pending.valid = false;
+    if (p.min(mine ? 1.0 : 0.0) == 0) return;
+    for (std::size_t k = 0; k < health_events::kinds; ++k) {
+        const std::uint64_t count = p.sum(pending.count[k]);
+        if (count == 0) continue;
+        health_.count[k] += count;
+        if (!health_.first[k].empty()) continue;
+        // The lowest ordinal that met the guard (ordinals are below 2^53: exact as doubles).
+        const double first = pending.count[k] ? double(ordinal(std::size_t(pending.first[k]))) : 1e300;
+        const double lowest = p.min(first);
+        const std::string text =
+            pending.count[k] && first == lowest
+                ? with_ordinal(describe_particle(particles_[std::size_t(pending.first[k])], steps_, double(time_)))
+                : std::string();
+        health_.first[k] = p.share(pending.count[k] && first == lowest ? &text : nullptr) + ": " + health_events::what[k];
+    }
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
     compute_stencils();
     const auto& slab = slabs_.slab_of();
