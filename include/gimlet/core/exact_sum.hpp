@@ -18,10 +18,8 @@ namespace gimlet {
 /// the digital computer: a new approach", SIAM Review 28(1); the digit layout as in Neal 2015,
 /// "Fast exact summation using small and large superaccumulators", arXiv:1505.05571). Every
 /// finite double is an integer multiple of 2^-1074 below 2^1024, so the accumulator holds the
-/// exact sum as 32-bit digits, each in a 64-bit signed integer with room for 2^31 additions
-/// before its carries are propagated. value() rounds the exact sum once, to nearest (ties to
-/// even; below the normal range the result may be one subnormal step off, the same step for any
-/// order). So the result is a function of the multiset of terms alone: any order of adding
+/// exact sum as 32-bit digits, each in a 64-bit signed integer, with its carries propagated
+/// every 2^30 additions. value() rounds the exact sum once, to nearest (ties to even). So the result is a function of the multiset of terms alone: any order of adding
 /// them, and any grouping into partial sums merged with add(const exact_sum&), gives the same
 /// bits. Two processes can merge partial sums by adding their digits() as integers.
 ///
@@ -92,9 +90,8 @@ public:
         return out;
     }
 
-    /// The sum whose digits() are `d`, or the digit-wise sum of at most 2^30 such arrays (the
-    /// non-finite states then OR-ed: pass their bitwise OR in the last entry, or their sum where
-    /// each is 0 or the same bit).
+    /// The sum whose digits() are `d`, or the digit-wise sum of at most 2^30 such arrays, with
+    /// the bitwise OR of their non-finite states in the last entry.
     [[nodiscard]] static exact_sum from_digits(const digit_array& d) {
         exact_sum s;
         for (std::size_t k = 0; k < digit_count; ++k) s.digits_[k] = d[k];

@@ -4,11 +4,13 @@
 /// gimlet::processes: what a solver asks of the processes it is split between (one MPI rank each,
 /// gimlet::mpi::ranks), without naming MPI: the serial library has no MPI dependency.
 
+#include "gimlet/core/error.hpp"
 #include "gimlet/core/exact_sum.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -51,7 +53,42 @@ struct slab_layout {
     std::size_t nodes_per_row = 0, nodes = 0;
     /// The number of slabs.
     [[nodiscard]] int slabs() const noexcept { return int(colour.size()); }
+    /// The same slabs on the same grid.
+    [[nodiscard]] bool operator==(const slab_layout&) const = default;
 };
+
+/// A failure on one process of a run, thrown on every process alike where they agree on failures
+/// (processes::together, and the solver's stages): "rank r of n: " and the failure's message
+/// (where several processes failed, the lowest-numbered particle's, else the lowest rank's).
+class processes_stopped : public numerical_error {
+public:
+    /// The message, and whether the failure was bad input (an invalid_parameter) rather than
+    /// numerical trouble.
+    processes_stopped(const std::string& what, bool bad_input) : numerical_error(what), bad_input_(bad_input) {}
+    /// Whether the failure was bad input (an invalid_parameter on the process that failed).
+    [[nodiscard]] bool bad_input() const noexcept { return bad_input_; }
+
+private:
+    bool bad_input_;
+};
+
+namespace detail {
+/// Where any process `failed`, every process throws processes_stopped with the message of the
+/// failure of lowest `key` (ties: the lowest rank), "rank r of n: " before it; `min(x)` and
+/// `share(text)` are the processes' collectives (processes::min, processes::share).
+template <class Min, class Share>
+void agree(Min&& min, Share&& share, int rank, int size, bool failed, double key, const std::string& message,
+           bool bad_input) {
+    const double none = std::numeric_limits<double>::infinity();
+    const double lowest = min(failed ? key : none);
+    if (lowest == none) return;
+    const std::string mine = std::to_string(rank) + (bad_input ? " b " : " n ") + message;
+    const std::string first = share(failed && key == lowest ? &mine : nullptr);
+    const std::size_t space = first.find(' ');
+    throw processes_stopped("rank " + first.substr(0, space) + " of " + std::to_string(size) + ": " + first.substr(space + 3),
+                            first.compare(space + 1, 1, "b") == 0);
+}
+}  // namespace detail
 
 /// Node rows two processes both hold: the first slab_rows rows of a slab whose slab below is the
 /// other process's (nodes [first, first + count) of every block), and the other process.
@@ -108,9 +145,29 @@ public:
     /// The text of the lowest process that passes one (`mine` not null), on every process; empty
     /// where none does.
     [[nodiscard]] virtual std::string share(const std::string* mine) = 0;
-    /// f() on every process; if it throws on any, it throws on every one (the lowest failing
-    /// process's message), so that none waits for a process that stopped.
+    /// f() on every process; if it throws on any, every process throws processes_stopped with the
+    /// lowest failing process's message, so that none waits for a process that stopped. A
+    /// processes_stopped from f (an agreement inside it) passes through unchanged.
     virtual void together(const std::function<void()>& f) = 0;
 };
+
+namespace detail {
+/// A solver's processes (solver_options::processes; its processes()), or null: one process, or
+/// an object without processes().
+template <class Solver>
+[[nodiscard]] gimlet::processes* processes_of(const Solver& s) {
+    if constexpr (requires { s.processes(); }) return s.processes();
+    else return (void)s, nullptr;
+}
+
+/// Refuse, by name, a measurement that reads one process's particles only on a solver split
+/// between processes (the same on every process: no collective).
+template <class Solver>
+void require_one_process(const Solver& s, const char* what) {
+    if (processes_of(s))
+        throw invalid_parameter(std::string(what) + " on a solver split between processes (solver_options::processes)",
+                                "called", "one process: it reads this process's particles only, and is not distributed yet");
+}
+}  // namespace detail
 
 }  // namespace gimlet

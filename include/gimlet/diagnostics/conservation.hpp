@@ -29,8 +29,7 @@ namespace detail {
 // processes(), where it has some): exact, so the same bits as one process's sum.
 template <class Solver>
 [[nodiscard]] exact_sum over_processes(const Solver& s, const exact_sum& part) {
-    if constexpr (requires { s.processes(); })
-        if (gimlet::processes* p = s.processes()) return p->sum(part);
+    if (gimlet::processes* p = gimlet::detail::processes_of(s)) return p->sum(part);
     return part;
 }
 

@@ -632,6 +632,7 @@ template <class Solver>
     static_assert(Solver::store_type::template has<fields::temperature>,
                   "hot_spot needs particle temperatures: use a thermal policy that is on");
     require_positive("hot-spot radius (m)", radius);
+    gimlet::detail::require_one_process(s, "diagnostics::hot_spot");
     return detail::hot_spot_search<Solver>(s, radius, above, work).run();
 }
 

@@ -20,6 +20,7 @@
 #include "gimlet/core/detail/omp.hpp"
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/processes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -69,6 +70,7 @@ struct strip_line {
 // the sort returns the same, and a line's strip is the same whatever other lines are asked.
 template <class Solver>
 std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<strip_line<typename Solver::vector>>& lines) {
+    gimlet::detail::require_one_process(s, "diagnostics::strips");
     for (const auto& line : lines) check_line<Solver>(line.axis, line.half_width);
     const auto& store = s.particles();
     const auto& x = store.template column<fields::position>();
@@ -165,6 +167,7 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
 template <class Solver>
 std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
                                double strip_half_width) {
+    gimlet::detail::require_one_process(s, "diagnostics::strip");
     return std::move(strips(s, {{body, axis, point, strip_half_width}})[0]);
 }
 
@@ -195,6 +198,7 @@ struct surface_gap_result {
 template <class Solver>
 [[nodiscard]] surface_gap_result surface_gap(const Solver& s, std::uint32_t lower, std::uint32_t upper, int axis,
                                              const typename Solver::vector& point, double strip_half_width) {
+    gimlet::detail::require_one_process(s, "diagnostics::surface_gap");
     const auto both = detail::strips(s, {{lower, axis, point, strip_half_width}, {upper, axis, point, strip_half_width}});
     const auto& lo = both[0];
     const auto& hi = both[1];
@@ -260,6 +264,7 @@ template <class Solver>
 [[nodiscard]] void_chord_result void_chord(const Solver& s, std::uint32_t body, int axis,
                                            const typename Solver::vector& point, double strip_half_width,
                                            double min_width) {
+    gimlet::detail::require_one_process(s, "diagnostics::void_chord");
     require_positive("void threshold width (m)", min_width);
     return detail::chord(detail::strip(s, body, axis, point, strip_half_width), double(point[axis]), min_width);
 }
@@ -283,6 +288,7 @@ template <class Solver>
 [[nodiscard]] std::vector<void_chord_result> void_chords(const Solver& s,
                                                          const std::vector<chord_line<typename Solver::vector>>& lines,
                                                          double strip_half_width, double min_width) {
+    gimlet::detail::require_one_process(s, "diagnostics::void_chords");
     require_positive("void threshold width (m)", min_width);
     require_positive("strip half-width (m)", strip_half_width);
     if (lines.empty()) return {};

@@ -39,6 +39,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/io/detail/file.hpp"
 #include "gimlet/io/detail/text.hpp"
 
@@ -367,14 +368,11 @@ struct parsed_checkpoint {
 
 }  // namespace detail
 
-/// Save `solver`'s particles, time and step count to `path`, with the caller's `values`.
-/// The file is written under a temporary name in the same directory and renamed when complete,
-/// so a crash never leaves a half-written checkpoint under `path` (an older one stays intact).
-/// Throws invalid_parameter if `path` cannot be written.
-template <Checkpointable Solver>
-void save_checkpoint(const std::filesystem::path& path, const Solver& solver, const checkpoint_values& values = {}) {
-    using S = typename Solver::space_type;
-    const auto& store = solver.particles();
+namespace detail {
+// The file of a store's particles, time and step count (save_checkpoint's format).
+template <class S, class Store>
+void write_checkpoint(const std::filesystem::path& path, const Store& store, double time, std::uint64_t steps,
+                      const checkpoint_values& values) {
     const auto fields = detail::layout_of(store);
     const std::uint64_t n = store.size();
 
@@ -391,8 +389,8 @@ void save_checkpoint(const std::filesystem::path& path, const Solver& solver, co
         sink.value(static_cast<std::uint32_t>(S::dim));
         sink.value(static_cast<std::uint32_t>(sizeof(typename S::real)));
         sink.value(n);
-        sink.value(double(solver.time()));
-        sink.value(static_cast<std::uint64_t>(solver.steps()));
+        sink.value(time);
+        sink.value(steps);
         sink.value(static_cast<std::uint32_t>(fields.size()));
         sink.value(static_cast<std::uint32_t>(values.size()));
         for (const auto& f : fields) {
@@ -407,6 +405,29 @@ void save_checkpoint(const std::filesystem::path& path, const Solver& solver, co
         const std::uint64_t hash = sink.hash();
         out.write(reinterpret_cast<const char*>(&hash), sizeof hash);
     });
+}
+}  // namespace detail
+
+/// Save `solver`'s particles, time and step count to `path`, with the caller's `values`.
+/// The file is written under a temporary name in the same directory and renamed when complete,
+/// so a crash never leaves a half-written checkpoint under `path` (an older one stays intact).
+/// Throws invalid_parameter if `path` cannot be written.
+///
+/// On many processes (solver_options::processes) it is collective: the particles are gathered in
+/// ordinal order and the first process writes the file, the one a single process would write
+/// (so it restarts on any number of processes); a failure to write throws on every process.
+template <Checkpointable Solver>
+void save_checkpoint(const std::filesystem::path& path, const Solver& solver, const checkpoint_values& values = {}) {
+    using S = typename Solver::space_type;
+    if (gimlet::processes* p = gimlet::detail::processes_of(solver)) {
+        const auto whole = solver.gathered_particles();
+        p->together([&] {
+            if (p->rank() == 0)
+                detail::write_checkpoint<S>(path, whole, double(solver.time()), std::uint64_t(solver.steps()), values);
+        });
+        return;
+    }
+    detail::write_checkpoint<S>(path, solver.particles(), double(solver.time()), std::uint64_t(solver.steps()), values);
 }
 
 /// Read and verify the description of the checkpoint at `path` (everything but the columns),
@@ -425,13 +446,13 @@ void save_checkpoint(const std::filesystem::path& path, const Solver& solver, co
 /// type, particle fields or particle count differ from the solver's, or whose particles' bodies,
 /// masses or reference volumes are not the solver's (another scene), throws checkpoint_error
 /// naming the file and the problem, and leaves the solver as it was.
-template <Checkpointable Solver>
-checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& solver) {
-    using S = typename Solver::space_type;
-    const std::vector<char> bytes = detail::read_whole_file(path);
-    const auto parsed = detail::parse_checkpoint(bytes, path);
+namespace detail {
+// The checks of load_checkpoint against `current` (the solver's particles, or on many processes
+// all of them gathered), before anything is touched; throws checkpoint_error.
+template <class S, class Store>
+void check_checkpoint(const std::filesystem::path& path, const std::vector<char>& bytes, const parsed_checkpoint& parsed,
+                      const Store& current) {
     const auto& info = parsed.info;
-
     if (info.dimension != S::dim)
         throw checkpoint_error(path, "dimension differs: the file is " + std::to_string(info.dimension) +
                                          "-D, the solver " + std::to_string(S::dim) + "-D");
@@ -439,7 +460,6 @@ checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& sol
         throw checkpoint_error(path, "real type differs: the file has " + std::to_string(info.real_bytes) +
                                          "-byte reals, the solver " + std::to_string(sizeof(typename S::real)) +
                                          "-byte");
-    const auto& current = std::as_const(solver).particles();
     const auto fields = detail::layout_of(current);
     if (info.fields != fields) throw checkpoint_error(path, detail::layout_difference(info.fields, fields));
     if (info.particles != current.size())
@@ -449,50 +469,93 @@ checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& sol
 
     // A run never changes a particle's body, mass or reference volume, so the file's must be
     // those of the solver's scene (in any order: sorting by cell permutes the particles).
-    {
-        using real = typename S::real;
-        using key = std::tuple<std::uint32_t, real, real>;
-        std::vector<std::uint32_t> body(current.size());
-        std::vector<real> mass(current.size()), volume(current.size());
-        const char* at = bytes.data() + parsed.columns_at;
-        current.for_each_column([&](auto tag, const auto& column) {
-            using F = decltype(tag);
-            using T = typename std::remove_cvref_t<decltype(column)>::value_type;
-            if constexpr (std::is_same_v<F, fields::body>) detail::read_column(at, body);
-            if constexpr (std::is_same_v<F, fields::mass>) detail::read_column(at, mass);
-            if constexpr (std::is_same_v<F, fields::volume0>) detail::read_column(at, volume);
-            at += column.size() * detail::element_bytes<T>();
-        });
-        std::vector<key> in_file(current.size()), in_solver(current.size());
-        const auto& b = current.template column<fields::body>();
-        const auto& m = current.template column<fields::mass>();
-        const auto& v = current.template column<fields::volume0>();
-        for (std::size_t i = 0; i < current.size(); ++i) {
-            in_file[i] = {body[i], mass[i], volume[i]};
-            in_solver[i] = {b[i], m[i], v[i]};
-        }
-        std::sort(in_file.begin(), in_file.end());
-        std::sort(in_solver.begin(), in_solver.end());
-        const auto differ = std::mismatch(in_file.begin(), in_file.end(), in_solver.begin());
-        if (differ.first != in_file.end())
-            throw checkpoint_error(
-                path, "its particles are not the solver's scene: bodies, masses or reference volumes differ (e.g. a "
-                      "particle of body " + std::to_string(std::get<0>(*differ.first)) + " with mass " +
-                          gimlet::detail::to_text(std::get<1>(*differ.first)) + " and volume " +
-                          gimlet::detail::to_text(std::get<2>(*differ.first)) +
-                          " in the file has no match in the solver; build the solver from the same scene as the "
-                          "saved run)");
-    }
-
-    // Nothing can fail from here on: the copy is all or nothing.
+    using real = typename S::real;
+    using key = std::tuple<std::uint32_t, real, real>;
+    std::vector<std::uint32_t> body(current.size());
+    std::vector<real> mass(current.size()), volume(current.size());
     const char* at = bytes.data() + parsed.columns_at;
-    solver.particles().for_each_column([&](auto, auto& column) {
+    current.for_each_column([&](auto tag, const auto& column) {
+        using F = decltype(tag);
+        using T = typename std::remove_cvref_t<decltype(column)>::value_type;
+        if constexpr (std::is_same_v<F, fields::body>) detail::read_column(at, body);
+        if constexpr (std::is_same_v<F, fields::mass>) detail::read_column(at, mass);
+        if constexpr (std::is_same_v<F, fields::volume0>) detail::read_column(at, volume);
+        at += column.size() * detail::element_bytes<T>();
+    });
+    std::vector<key> in_file(current.size()), in_solver(current.size());
+    const auto& b = current.template column<fields::body>();
+    const auto& m = current.template column<fields::mass>();
+    const auto& v = current.template column<fields::volume0>();
+    for (std::size_t i = 0; i < current.size(); ++i) {
+        in_file[i] = {body[i], mass[i], volume[i]};
+        in_solver[i] = {b[i], m[i], v[i]};
+    }
+    std::sort(in_file.begin(), in_file.end());
+    std::sort(in_solver.begin(), in_solver.end());
+    const auto differ = std::mismatch(in_file.begin(), in_file.end(), in_solver.begin());
+    if (differ.first != in_file.end())
+        throw checkpoint_error(
+            path, "its particles are not the solver's scene: bodies, masses or reference volumes differ (e.g. a "
+                  "particle of body " + std::to_string(std::get<0>(*differ.first)) + " with mass " +
+                      gimlet::detail::to_text(std::get<1>(*differ.first)) + " and volume " +
+                      gimlet::detail::to_text(std::get<2>(*differ.first)) +
+                      " in the file has no match in the solver; build the solver from the same scene as the "
+                      "saved run)");
+}
+
+// The file's columns into `store` (of the file's particle count).
+template <class Store>
+void read_columns(const std::vector<char>& bytes, const parsed_checkpoint& parsed, Store& store) {
+    const char* at = bytes.data() + parsed.columns_at;
+    store.for_each_column([&](auto, auto& column) {
         using T = typename std::remove_cvref_t<decltype(column)>::value_type;
         detail::read_column(at, column);
         at += column.size() * detail::element_bytes<T>();
     });
-    solver.resume_at(static_cast<typename S::real>(info.time), info.steps);
-    return info.values;
+}
+}  // namespace detail
+
+/// Resume `solver` from the checkpoint at `path`: its particles, time and step count become
+/// those saved. Build `solver` from the same scene, options and contact parameters as the run
+/// that saved it; the run then continues bit for bit as the uninterrupted one. Returns the
+/// caller's values saved with it.
+///
+/// The whole file is read and checked before the solver is touched: a file that is missing,
+/// truncated, corrupt (checksum), of another version or byte order, or whose dimension, real
+/// type, particle fields or particle count differ from the solver's, or whose particles' bodies,
+/// masses or reference volumes are not the solver's (another scene), throws checkpoint_error
+/// naming the file and the problem, and leaves the solver as it was.
+///
+/// On many processes (solver_options::processes) it is collective: every process reads the
+/// file, the checks run on the particles of all of them (gathered in ordinal order), and each
+/// keeps the particles of its own slabs, so a checkpoint written on any number of processes
+/// resumes on any other, bit for bit; a failed check throws on every process.
+template <Checkpointable Solver>
+checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& solver) {
+    using S = typename Solver::space_type;
+    if (gimlet::processes* p = gimlet::detail::processes_of(solver)) {
+        std::vector<char> bytes;
+        detail::parsed_checkpoint parsed;
+        const auto current = std::as_const(solver).gathered_particles();  // the whole run's on process 0
+        p->together([&] {
+            bytes = detail::read_whole_file(path);
+            parsed = detail::parse_checkpoint(bytes, path);
+            if (p->rank() == 0) detail::check_checkpoint<S>(path, bytes, parsed, current);
+        });
+        std::remove_cvref_t<decltype(current)> whole;
+        whole.resize(parsed.info.particles);
+        detail::read_columns(bytes, parsed, whole);
+        solver.replace_particles(whole);
+        solver.resume_at(static_cast<typename S::real>(parsed.info.time), parsed.info.steps);
+        return parsed.info.values;
+    }
+    const std::vector<char> bytes = detail::read_whole_file(path);
+    const auto parsed = detail::parse_checkpoint(bytes, path);
+    detail::check_checkpoint<S>(path, bytes, parsed, std::as_const(solver).particles());
+    // Nothing can fail from here on: the copy is all or nothing.
+    detail::read_columns(bytes, parsed, solver.particles());
+    solver.resume_at(static_cast<typename S::real>(parsed.info.time), parsed.info.steps);
+    return parsed.info.values;
 }
 
 }  // namespace gimlet::io

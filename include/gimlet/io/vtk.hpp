@@ -16,6 +16,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/core/particle_store.hpp"
 #include "gimlet/io/detail/file.hpp"
 #include "gimlet/io/detail/text.hpp"
@@ -166,13 +167,22 @@ public:
         });
     }
 
-    /// Write a solver's particles, with its time.
+    /// Write a solver's particles, with its time. On many processes (solver_options::processes)
+    /// it is collective: the particles are gathered in ordinal order and the first process
+    /// writes the file one process would write.
     template <class Solver>
         requires requires(const Solver& s) {
             { s.particles() } -> std::same_as<const Store&>;
             s.time();
         }
     void write(const std::filesystem::path& path, const Solver& solver) const {
+        if (gimlet::processes* p = gimlet::detail::processes_of(solver)) {
+            const auto whole = solver.gathered_particles();
+            p->together([&] {
+                if (p->rank() == 0) write(path, whole, double(solver.time()));
+            });
+            return;
+        }
         write(path, solver.particles(), double(solver.time()));
     }
 

@@ -7,6 +7,7 @@
 
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/exact_sum.hpp"
+#include "gimlet/core/processes.hpp"
 
 #include <mpi.h>
 
@@ -14,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,12 @@ public:
         int provided = 0;
         MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
         owner_ = true;
+        if (provided < MPI_THREAD_FUNNELED) {
+            MPI_Finalize();
+            owner_ = false;
+            throw invalid_parameter("MPI thread support", std::to_string(provided),
+                                    "MPI_THREAD_FUNNELED or more (the main thread calls MPI while OpenMP threads run)");
+        }
     }
     environment(const environment&) = delete;
     environment& operator=(const environment&) = delete;
@@ -64,6 +72,8 @@ public:
     /// The MPI communicator.
     [[nodiscard]] MPI_Comm get() const noexcept { return comm_; }
 
+    /// Wait for every process.
+    void barrier() const { MPI_Barrier(comm_); }
     /// The least of every process's x.
     [[nodiscard]] double min(double x) const { return reduce(x, MPI_MIN); }
     /// The greatest of every process's x.
@@ -105,31 +115,33 @@ public:
         return text;
     }
 
-    /// f() on every process; if it throws on any, every process throws: the lowest failing
-    /// rank's exception where that is this process, otherwise a gimlet::numerical_error with its
-    /// message and rank. Call it where every process reaches the same call, so that a failure on
-    /// one rank stops them all instead of leaving the others waiting in their next exchange.
+    /// f() on every process; if it throws on any, every process throws gimlet::processes_stopped
+    /// with the lowest failing rank's message (agree()). A processes_stopped from f, agreed on
+    /// every process already, passes through. Call it where every process reaches the same
+    /// call, so that a failure on one rank stops them all instead of leaving the others waiting
+    /// in their next exchange.
     template <class F>
     void together(F&& f) const {
-        std::exception_ptr caught;
         std::string message;
+        bool failed = false, bad_input = false;
         try {
             f();
+        } catch (const processes_stopped&) {
+            throw;
+        } catch (const invalid_parameter& e) {
+            failed = true, bad_input = true, message = e.what();
         } catch (const std::exception& e) {
-            caught = std::current_exception();
-            message = e.what();
+            failed = true, message = e.what();
         } catch (...) {
-            caught = std::current_exception();
-            message = "an exception that is not a std::exception";
+            failed = true, message = "an exception that is not a std::exception";
         }
-        // The lowest failing rank's message (and rank), to every process.
-        const std::string tagged = std::to_string(rank_) + " " + message;
-        const std::string first = share(caught ? &tagged : nullptr);
-        if (first.empty()) return;
-        const std::size_t space = first.find(' ');
-        const int lowest = std::stoi(first.substr(0, space));
-        if (rank_ == lowest) std::rethrow_exception(caught);
-        throw numerical_error("rank " + std::to_string(lowest) + " of " + std::to_string(size_) + ": " + first.substr(space + 1));
+        agree(failed, std::numeric_limits<double>::max(), message, bad_input);
+    }
+
+    /// detail::agree on these processes. Collective.
+    void agree(bool failed, double key, const std::string& message, bool bad_input) const {
+        detail::agree([&](double x) { return min(x); }, [&](const std::string* text) { return share(text); }, rank_,
+                      size_, failed, key, message, bad_input);
     }
 
     /// Every process's bytes to every process (`out[r]` to rank r); returns what each rank sent

@@ -223,12 +223,30 @@ private:
 /// make_ranks gives): the gimlet::processes a solver calls, on MPI.
 class ranks final : public processes {
 public:
-    /// The ranks of `comm`.
-    explicit ranks(const communicator& comm = communicator{}) : comm_(comm) {}
+    /// The ranks of `comm`, on a duplicate of it: the library's messages never meet the
+    /// program's own.
+    explicit ranks(const communicator& comm = communicator{}) : comm_(duplicate(comm)) {}
+    ranks(const ranks&) = delete;
+    ranks& operator=(const ranks&) = delete;
+    ~ranks() override {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        MPI_Comm handle = comm_.get();
+        if (!finalized) MPI_Comm_free(&handle);
+    }
 
     [[nodiscard]] int rank() const override { return comm_.rank(); }
     [[nodiscard]] int size() const override { return comm_.size(); }
-    void set_up(const slab_layout& layout) override { fold_.emplace(comm_, layout); }
+    // A solver's slabs. Solvers built from copies of one options object share this object: that
+    // is safe for the same slabs (the exchanges keep nothing between passes), refused for others.
+    void set_up(const slab_layout& layout) override {
+        if (fold_ && !(layout_ == layout))
+            throw invalid_parameter("solver_options::processes", "shared with a solver of other slabs",
+                                    "one gimlet::mpi::make_ranks() for each solver of its own grid");
+        if (fold_) return;
+        fold_.emplace(comm_, layout);
+        layout_ = layout;
+    }
     [[nodiscard]] int owner(int slab) const override { return fold_->ranks().owner(slab); }
     void after_colour(int colour, std::span<const nodal_array> arrays) override { fold_->after_colour(colour, arrays); }
     void finish(std::span<const nodal_array> arrays) override { fold_->finish(arrays); }
@@ -251,8 +269,15 @@ public:
     [[nodiscard]] const communicator& comm() const noexcept { return comm_; }
 
 private:
+    static communicator duplicate(const communicator& comm) {
+        MPI_Comm copy = MPI_COMM_NULL;
+        MPI_Comm_dup(comm.get(), &copy);
+        return communicator(copy);
+    }
+
     communicator comm_;
     std::optional<node_fold> fold_;
+    slab_layout layout_;
 };
 
 /// The processes of `comm` for solver_options::processes.

@@ -205,6 +205,13 @@ public:
     /// Particle i's number in the whole run: its index in one process's store, whatever the
     /// number of processes (the seeding order, renumbered where the particles are sorted).
     [[nodiscard]] std::uint64_t ordinal(std::size_t i) const noexcept { return ordinal_.empty() ? i : ordinal_[i]; }
+    /// Every process's particles in ordinal order (one process's store) on the first process,
+    /// none on the others; on one process, a copy of particles(). Collective.
+    [[nodiscard]] store_type gathered_particles() const;
+    /// Replace the particles by `whole`, the whole run's in ordinal order (every process passes
+    /// the same): each process keeps those of its own slabs. The next step checks them.
+    /// Collective.
+    void replace_particles(const store_type& whole);
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;
@@ -498,7 +505,12 @@ private:
     // particle on one stops all (together) before the collectives that follow.
     void check_pending_across() {
         if (processes()->max(state_touched_ ? 1.0 : 0.0) == 0) return;
-        together([&] { check_particles(); });
+        together([&] {
+            require(particles_.size() == ordinal_.size(), "particles on this process after a change between steps",
+                    double(particles_.size()),
+                    std::to_string(ordinal_.size()) + ": particles are not added or removed on many processes");
+            check_particles();
+        });
         check_light_possible();
         state_touched_ = false;
     }
@@ -522,7 +534,9 @@ private:
     // f() on every process; where it throws on one, it throws on all, the message naming the
     // particle by its ordinal (describe_particle names it by its index in this process's store).
     void together(const std::function<void()>& f);
-    [[nodiscard]] std::string with_ordinal(const std::string& message) const;
+    // `message` with describe_particle's local index replaced by the particle's ordinal (into
+    // *key where given).
+    [[nodiscard]] std::string with_ordinal(const std::string& message, double* key = nullptr) const;
     // The particles of this process's slabs kept, in seeding order (the constructor's).
     void keep_own_particles();
     // Particles whose stencils start in another process's slabs go there, each process's kept in
@@ -719,10 +733,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils() {
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::check_light_possible() {
-    lights_.check_possible(*this);
-    // On many processes, over every process's particles (light particles are refused there so far).
-    if (auto* p = processes(); p && p->max(lights_.possible() ? 1.0 : 0.0) > 0)
-        detail::check_distributable<false>(options_, true);
+    lights_.check_possible(*this);  // on many processes, over every process's particles
+    // (Light particles are refused on many processes so far.)
+    if (processes() && lights_.possible()) detail::check_distributable<false>(options_, true);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <regex>
 #include <string>
 #include <vector>
@@ -20,23 +21,36 @@ namespace gimlet {
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::together(const std::function<void()>& f) {
-    processes()->together([&] {
-        try {
-            f();
-        } catch (const numerical_error& e) {
-            throw numerical_error(with_ordinal(e.what()));
-        }
-    });
+    // As processes::together, but where several processes fail the lowest-numbered particle's
+    // failure is the one reported, as one process reports it, named by its ordinal.
+    std::string message;
+    bool failed = false, bad_input = false;
+    double key = std::numeric_limits<double>::max();  // a failure that names no particle
+    try {
+        f();
+    } catch (const processes_stopped&) {
+        throw;  // agreed on every process already
+    } catch (const invalid_parameter& e) {
+        failed = true, bad_input = true, message = with_ordinal(e.what(), &key);
+    } catch (const std::exception& e) {
+        failed = true, message = with_ordinal(e.what(), &key);
+    } catch (...) {
+        failed = true, message = "an exception that is not a std::exception";
+    }
+    auto* p = processes();
+    detail::agree([&](double x) { return p->min(x); }, [&](const std::string* text) { return p->share(text); },
+                  p->rank(), p->size(), failed, key, message, bad_input);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-std::string solver_core<S, Sh, M, Fields, MultiField, Part>::with_ordinal(const std::string& message) const {
+std::string solver_core<S, Sh, M, Fields, MultiField, Part>::with_ordinal(const std::string& message, double* key) const {
     // describe_particle's "particle <index> (body": the index in this process's store.
     static const std::regex named(R"(particle (\d+) \(body)");
     std::smatch m;
     if (!std::regex_search(message, m, named)) return message;
     const auto i = std::size_t(std::stoull(m[1].str()));
     if (i >= particles_.size()) return message;
+    if (key) *key = double(ordinal(i));  // ordinals are below 2^53: exact
     return m.prefix().str() + "particle " + std::to_string(ordinal(i)) + " (body" + m.suffix().str();
 }
 
@@ -153,6 +167,51 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 void solver_core<S, Sh, M, Fields, MultiField, Part>::renumber() {
     const std::uint64_t below = processes()->exclusive_sum(particles_.size());
     for (std::size_t k = 0; k < ordinal_.size(); ++k) ordinal_[k] = below + k;
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+auto solver_core<S, Sh, M, Fields, MultiField, Part>::gathered_particles() const -> store_type {
+    auto* p = processes();
+    if (!p) return particles_;
+    std::size_t record = sizeof(std::uint64_t);
+    particles_.for_each_column([&](auto, const auto& column) { record += sizeof(column[0]); });
+    std::vector<std::vector<std::byte>> out(std::size_t(p->size()));
+    auto& bytes = out[0];
+    bytes.resize(particles_.size() * record);
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        std::memcpy(bytes.data() + at, &ordinal_[i], sizeof(std::uint64_t));
+        at += sizeof(std::uint64_t);
+        particles_.for_each_column([&](auto, const auto& column) {
+            std::memcpy(bytes.data() + at, &column[i], sizeof(column[i]));
+            at += sizeof(column[i]);
+        });
+    }
+    const auto in = p->all_to_all(out);
+    store_type whole;
+    if (p->rank() != 0) return whole;
+    std::size_t total = 0;
+    for (const auto& b : in) total += b.size() / record;
+    whole.resize(total);
+    for (const auto& b : in)
+        for (std::size_t r = 0; r < b.size(); r += record) {
+            std::uint64_t n = 0;
+            std::memcpy(&n, b.data() + r, sizeof n);
+            std::size_t offset = r + sizeof(std::uint64_t);
+            whole.for_each_column([&](auto, auto& column) {
+                std::memcpy(static_cast<void*>(&column[n]), b.data() + offset, sizeof(column[n]));
+                offset += sizeof(column[n]);
+            });
+        }
+    return whole;
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::replace_particles(const store_type& whole) {
+    particles_ = whole;
+    state_touched_ = true;
+    pending_health_.valid = false;
+    if (processes()) keep_own_particles();
 }
 
 }  // namespace gimlet

@@ -26,7 +26,7 @@ template <std::size_t N>
 struct fold_exchange {
     processes* on = nullptr;
     std::array<nodal_array, N> arrays{};
-    [[nodiscard]] bool active() const noexcept { return on != nullptr; }
+    [[nodiscard]] bool active() const noexcept { return on != nullptr && on->size() > 1; }
     void after_colour(int c) { on->after_colour(c, arrays); }
     void finish() { on->finish(arrays); }
 };

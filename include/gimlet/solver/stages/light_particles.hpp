@@ -80,7 +80,8 @@ public:
         const auto& particles = c.particles_;
         const auto& body = particles.template column<fields::body>();
         possible_ = false;
-        if (particles.size() == 0 || !(c.options_.light_particle_ratio > 0)) return;
+        // (On many processes every process goes on to the reductions below, particles or not.)
+        if ((particles.size() == 0 && !c.processes()) || !(c.options_.light_particle_ratio > 0)) return;
         const std::size_t groups = Core::multi_field ? c.materials_.size() : 1;
         std::vector<real> least(groups, std::numeric_limits<real>::infinity()), most(groups, real(0));
         for (std::size_t i = 0; i < particles.size(); ++i) {
@@ -89,6 +90,9 @@ public:
             least[g] = std::min(least[g], rho);
             most[g] = std::max(most[g], rho);
         }
+        // On many processes, over every process's particles (exact: minima and maxima).
+        if (auto* p = c.processes())
+            for (std::size_t g = 0; g < groups; ++g) least[g] = real(p->min(double(least[g]))), most[g] = real(p->max(double(most[g])));
         for (std::size_t g = 0; g < groups; ++g)
             possible_ = possible_ || least[g] < real(c.options_.light_particle_ratio) * most[g];
     }
