@@ -342,6 +342,13 @@ gimlet_package_test(package.consume "${CMAKE_CURRENT_SOURCE_DIR}/package" "${GIM
 set_tests_properties(package.consume PROPERTIES FIXTURES_SETUP gimlet_consumer_built)
 add_test(NAME package.consume_serial COMMAND "${GIMLET_PACKAGE_BUILD}/gimlet_package_consumer_serial")
 set_tests_properties(package.consume_serial PROPERTIES LABELS package FIXTURES_REQUIRED gimlet_consumer_built)
+# The consumer of the mpi component (find_package(gimlet COMPONENTS mpi)), where MPI was found:
+# started alone, it runs on one process.
+if(GIMLET_USES_MPI)
+    add_test(NAME package.consume_mpi COMMAND "${GIMLET_PACKAGE_BUILD}/gimlet_package_consumer_mpi")
+    set_tests_properties(package.consume_mpi PROPERTIES LABELS "package;mpi" FIXTURES_REQUIRED gimlet_consumer_built
+                         ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_btl_vader_single_copy_mechanism=none")
+endif()
 
 # The custom_material tutorial stands alone: built on its own against the installed package, as a
 # user who copies its folder out of the tree would (docs/concepts.md points to it).
