@@ -76,7 +76,9 @@ public:
         return *this;
     }
 
+    /// add(x).
     exact_sum& operator+=(double x) { return add(x); }
+    /// add(other).
     exact_sum& operator+=(const exact_sum& other) { return add(other); }
 
     /// The digits and the non-finite state, carried (every digit but the top in [0, 2^32)), for

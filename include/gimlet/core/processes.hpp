@@ -49,8 +49,10 @@ struct slab_layout {
     int slab_rows = 1;
     /// Whether the last axis is periodic (the last slab's stencils then reach slab 0).
     bool periodic = false;
-    /// The grid's nodes per row of the last axis, and in all.
-    std::size_t nodes_per_row = 0, nodes = 0;
+    /// The grid's nodes per row of the last axis.
+    std::size_t nodes_per_row = 0;
+    /// The grid's nodes in all.
+    std::size_t nodes = 0;
     /// The number of slabs.
     [[nodiscard]] int slabs() const noexcept { return int(colour.size()); }
     /// The same slabs on the same grid.
@@ -93,8 +95,10 @@ void agree(Min&& min, Share&& share, int rank, int size, bool failed, double key
 /// Node rows two processes both hold: the first slab_rows rows of a slab whose slab below is the
 /// other process's (nodes [first, first + count) of every block), and the other process.
 struct shared_band {
-    /// The first node and the number of nodes, in each block.
-    std::size_t first = 0, count = 0;
+    /// The first node, in each block.
+    std::size_t first = 0;
+    /// The number of nodes, in each block.
+    std::size_t count = 0;
     /// The other process.
     int other = 0;
     /// The upper slab's index (it names the band in both processes).
@@ -120,10 +124,12 @@ public:
     /// The process that owns slab s.
     [[nodiscard]] virtual int owner(int slab) const = 0;
 
-    /// A slab pass over `arrays`: after colour c's slabs have scattered on every process (c = 0,
-    /// 1, 2), and after the last (finish), the nodes two processes both add to take every
-    /// contribution in the one-process order.
+    /// A slab pass over `arrays`, after colour c's slabs have scattered on every process (c = 0,
+    /// 1, 2): the running sums of the nodes two processes both add to pass to the process that
+    /// adds next.
     virtual void after_colour(int colour, std::span<const nodal_array> arrays) = 0;
+    /// A slab pass over `arrays`, after its last colour: the completed sums go back, so that
+    /// the nodes two processes both add to hold every contribution in the one-process order.
     virtual void finish(std::span<const nodal_array> arrays) = 0;
 
     /// The bands this process shares with others (after set_up), in slab order.
@@ -134,11 +140,13 @@ public:
 
     /// Bytes to every process (`out[r]` to process r); returns what each sent here, by process.
     [[nodiscard]] virtual std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out) = 0;
-    /// The least and greatest of every process's x (exact in any order).
+    /// The least of every process's x (exact in any order).
     [[nodiscard]] virtual double min(double x) = 0;
+    /// The greatest of every process's x (exact in any order).
     [[nodiscard]] virtual double max(double x) = 0;
-    /// The sum of every process's n, and of those below this one's.
+    /// The sum of every process's n.
     [[nodiscard]] virtual std::uint64_t sum(std::uint64_t n) = 0;
+    /// The sum of the n of the processes below this one (0 on the first).
     [[nodiscard]] virtual std::uint64_t exclusive_sum(std::uint64_t n) = 0;
     /// The exact sum of every process's partial sum.
     [[nodiscard]] virtual exact_sum sum(const exact_sum& part) = 0;

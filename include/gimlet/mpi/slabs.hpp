@@ -48,8 +48,9 @@ public:
         while (r + 1 < ranks_ && first(r + 1) <= s) ++r;
         return r;
     }
-    /// The number of slabs and of ranks.
+    /// The number of slabs.
     [[nodiscard]] int slabs() const noexcept { return slabs_; }
+    /// The number of ranks.
     [[nodiscard]] int ranks() const noexcept { return ranks_; }
 
 private:
