@@ -539,6 +539,9 @@ private:
     [[nodiscard]] std::string with_ordinal(const std::string& message, double* key = nullptr) const;
     // The particles of this process's slabs kept, in seeding order (the constructor's).
     void keep_own_particles();
+    // window_: this process's slabs' rows and the band above its last slab (wrapped on a
+    // periodic axis).
+    void set_window();
     // Particles whose stencils start in another process's slabs go there, each process's kept in
     // ordinal order (after compute_stencils).
     void migrate();
@@ -592,6 +595,9 @@ private:
     health_events health_;
     mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
     std::vector<std::uint64_t> ordinal_;  // on many processes, each particle's ordinal (ordinal())
+    // On many processes, the node ranges (of every field block) this process's particles reach:
+    // the node passes sweep these only (for_each_swept_entry); and that pass's runs of entries.
+    std::vector<std::pair<std::size_t, std::size_t>> window_, runs_;
     bool state_touched_ = true;  // the scene's particles are checked before the first step
 };
 
@@ -624,6 +630,7 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     if (auto* p = processes()) {
         detail::check_distributable<!distributable>(options_, lights_.possible());
         p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
+        set_window();
         keep_own_particles();
     }
     if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {

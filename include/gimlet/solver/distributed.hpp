@@ -80,6 +80,26 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::count_health_across() {
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
+    auto& p = *processes();
+    const int slabs = slabs_.slabs(), me = p.rank();
+    int first = slabs, last = -1;  // this process's slabs [first, last]
+    for (int s = 0; s < slabs; ++s)
+        if (p.owner(s) == me) first = std::min(first, s), last = std::max(last, s);
+    const auto per_row = std::size_t(grid_.stride(dim - 1));
+    const int rows = slabs_.rows();
+    window_.clear();
+    if (last < 0) return;
+    // The band above: the first rows of the next slab (on a periodic axis, of slab 0 after the last).
+    int end = slabs_.end_row(last);
+    if (last + 1 < slabs) end = std::min(slabs_.end_row(last + 1), end + slabs_.slab_rows);
+    window_.push_back({std::size_t(slabs_.first_row(first)) * per_row, std::size_t(end) * per_row});
+    if (last + 1 == slabs && slabs_.periodic() && slabs > 1 && first > 0)
+        window_.push_back({0, std::size_t(std::min(slabs_.end_row(0), slabs_.slab_rows)) * per_row});
+    (void)rows;
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
     compute_stencils();
     const auto& slab = slabs_.slab_of();

@@ -134,6 +134,26 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 template <class F>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f) {
     const std::size_t nodes = grid_.size(), swept = swept_fields();
+    if (!window_.empty()) {
+        // On many processes, the node rows this process's particles reach (its slabs and the band
+        // above them): the rest of the grid is never written here, so never swept.
+        constexpr std::size_t run = 1024;
+        runs_.clear();
+        const std::size_t blocks = grid_.entries() / nodes;
+        for (std::size_t block = 0; block < blocks; ++block) {
+            if (block % fields_per_body >= swept) continue;
+            for (const auto& [a, b] : window_)
+                for (std::size_t e = block * nodes + a, end = block * nodes + b; e < end; e += run)
+                    runs_.push_back({e, std::min(end, e + run)});
+        }
+        const auto n = static_cast<std::ptrdiff_t>(runs_.size());
+        detail::thread_shares shares(n, threads(), n * std::ptrdiff_t(run) >= node_parallel_threshold);
+        GIMLET_OMP(parallel num_threads(shares.team()))
+        for (auto claimed = shares.start(); shares.claim(claimed);)
+            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
+                for (std::size_t e = runs_[std::size_t(k)].first, last = runs_[std::size_t(k)].second; e < last; ++e) f(e);
+        return;
+    }
     if (swept == fields_per_body) {
         const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
         detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);
