@@ -150,6 +150,12 @@ public:
         const auto n = std::size_t(size_);
         std::vector<std::uint64_t> send_count(n), receive_count(n);
         for (std::size_t r = 0; r < n; ++r) send_count[r] = out[r].size();
+        // A message past MPI's int count stops every process before any is posted.
+        std::uint64_t largest = 0;
+        for (auto c : send_count) largest = std::max(largest, c);
+        agree(largest >= message_limit, 0, "bytes for one process in one exchange = " + std::to_string(largest) +
+                                              " is invalid; valid range: < 2^31 (MPI counts are int): use more processes",
+              false);
         MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T, comm_);
         std::vector<std::vector<std::byte>> in(n);
         std::vector<MPI_Request> requests;
@@ -177,21 +183,23 @@ public:
     /// A non-blocking send of `bytes` bytes (below 2^31: MPI counts are int) to rank `to`. The
     /// buffer stays untouched until the request is waited for.
     void isend(const void* data, std::size_t bytes, int to, int tag, MPI_Request& request) const {
-        require(bytes < (std::size_t(1) << 31), "bytes in one message", double(bytes), "< 2^31");
+        require(bytes < message_limit, "bytes in one message", double(bytes), "< 2^31");
         MPI_Isend(data, int(bytes), MPI_BYTE, to, tag, comm_, &request);
     }
     /// A non-blocking receive of exactly `bytes` bytes from rank `from`.
     void irecv(void* data, std::size_t bytes, int from, int tag, MPI_Request& request) const {
-        require(bytes < (std::size_t(1) << 31), "bytes in one message", double(bytes), "< 2^31");
+        require(bytes < message_limit, "bytes in one message", double(bytes), "< 2^31");
         MPI_Irecv(data, int(bytes), MPI_BYTE, from, tag, comm_, &request);
     }
     /// A blocking receive of exactly `bytes` bytes from rank `from`.
     void recv(void* data, std::size_t bytes, int from, int tag) const {
-        require(bytes < (std::size_t(1) << 31), "bytes in one message", double(bytes), "< 2^31");
+        require(bytes < message_limit, "bytes in one message", double(bytes), "< 2^31");
         MPI_Recv(data, int(bytes), MPI_BYTE, from, tag, comm_, MPI_STATUS_IGNORE);
     }
 
 private:
+    static constexpr std::uint64_t message_limit = std::uint64_t(1) << 31;  // MPI counts are int
+
     [[nodiscard]] double reduce(double x, MPI_Op op) const {
         double out = 0;
         MPI_Allreduce(&x, &out, 1, MPI_DOUBLE, op, comm_);
