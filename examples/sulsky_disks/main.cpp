@@ -37,9 +37,17 @@ int main(int argc, char** argv) {
     const double end = args.real("end-time", 3.0, 0.0, 100.0);
     const double speed = args.real("velocity", 0.1, 0.0, 10.0);
     const int threads = args.integer("threads", 0, 0, 1024);
-    // The writer creates and probes the directory; the others only take the flag.
-    const std::filesystem::path out =
-        writer ? args.directory("output", "results/sulsky_disks") : std::filesystem::path(args.path("output"));
+    // The writer creates and probes the directory; the others only take the flag. Where it
+    // cannot, every process stops (together), none waits for it in the run's exchanges.
+    std::filesystem::path out;
+    const auto output = [&] {
+        out = writer ? args.directory("output", "results/sulsky_disks") : std::filesystem::path(args.path("output"));
+    };
+#if GIMLET_EXAMPLE_MPI
+    comm.together(output);
+#else
+    output();
+#endif
     args.finish();
 
     using S = gimlet::space<2>;
