@@ -86,11 +86,12 @@ void check_fold(int rows, bool periodic, int fields, int threads) {
     std::vector<Eigen::Vector2d> momentum_1;
     c.scatter(all, 1, mass_1, momentum_1, gimlet::detail::no_exchange{});
     // This rank's particles (those of its slabs), scattered with the bands passed on.
-    gimlet::mpi::node_fold fold(comm, global.layout(c.per_row, c.nodes()));
-    const auto& ranks = fold.ranks();
+    gimlet::mpi::ranks processes(comm);
+    processes.set_up(global.layout(c.per_row, c.nodes()));
+    const gimlet::mpi::slab_ranks ranks(global.slabs(), comm.size());
     std::vector<std::size_t> mine;
     for (std::size_t p = 0; p < all.size(); ++p)
-        if (ranks.owner(std::min(c.first[p] / SlabRows, global.slabs() - 1)) == comm.rank()) mine.push_back(p);
+        if (processes.owner(std::min(c.first[p] / SlabRows, global.slabs() - 1)) == comm.rank()) mine.push_back(p);
     std::vector<double> mass;
     std::vector<Eigen::Vector2d> momentum;
     {
@@ -98,7 +99,7 @@ void check_fold(int rows, bool periodic, int fields, int threads) {
         mass.assign(c.nodes() * std::size_t(fields), 0.0);
         momentum.assign(c.nodes() * std::size_t(fields), Eigen::Vector2d::Zero());
     }
-    auto exchange = fold.exchange({gimlet::nodal_array::of(mass, c.nodes()), gimlet::nodal_array::of(momentum, c.nodes())});
+    gimlet::detail::fold_exchange<2> exchange{&processes, {gimlet::nodal_array::of(mass, c.nodes()), gimlet::nodal_array::of(momentum, c.nodes())}};
     c.scatter(mine, threads, mass, momentum, exchange);
     // Every node of this rank's slabs and of the band above its last slab.
     const int first_slab = ranks.first(comm.rank()), end_slab = ranks.first(comm.rank() + 1);

@@ -23,8 +23,9 @@ using S = gimlet::space<2>;
 using elastic_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>;
 
 // Sulsky, Chen and Schreyer's two elastic disks (1994, section 5.1), on a finer cell: they
-// cross slabs along both axes before, during and after the collision.
-gimlet::scene::scene<S, gimlet::elastic_material> two_disks(double cell) {
+// cross slabs along both axes before, during and after the collision. `upper_first`: the upper
+// disk is body 0, so the low ordinals sit on the high ranks.
+gimlet::scene::scene<S, gimlet::elastic_material> two_disks(double cell, bool upper_first = false) {
     gimlet::grid_spec<S> gs;
     gs.lower = S::vector::Zero();
     gs.upper = S::vector::Ones();
@@ -32,8 +33,10 @@ gimlet::scene::scene<S, gimlet::elastic_material> two_disks(double cell) {
     gs.bc = {gimlet::boundary::slip, gimlet::boundary::slip};
     gimlet::scene::scene<S, gimlet::elastic_material> scene(gs);
     const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);
-    scene.add_body(gimlet::scene::ball<S>(S::vector(0.25, 0.25), 0.2), mat, S::vector(0.1, 0.1), 2, "lower disk");
-    scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-0.1, -0.1), 2, "upper disk");
+    const auto lower = gimlet::scene::ball<S>(S::vector(0.25, 0.25), 0.2), upper = gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2);
+    if (upper_first) scene.add_body(upper, mat, S::vector(-0.1, -0.1), 2, "upper disk");
+    scene.add_body(lower, mat, S::vector(0.1, 0.1), 2, "lower disk");
+    if (!upper_first) scene.add_body(upper, mat, S::vector(-0.1, -0.1), 2, "upper disk");
     return scene;
 }
 
@@ -168,14 +171,7 @@ TEST_CASE("solver on many ranks: a bad particle on one rank stops every rank, na
 TEST_CASE("solver on many ranks: where several particles fail, the lowest ordinal is named, as on one process", "[mpi][solver]") {
     const gimlet::mpi::communicator comm;
     // The upper disk first: its particles have the low ordinals and sit on the high ranks.
-    gimlet::grid_spec<S> gs;
-    gs.lower = S::vector::Zero();
-    gs.upper = S::vector::Ones();
-    gs.cell = 0.05;
-    gimlet::scene::scene<S, gimlet::elastic_material> scene(gs);
-    const auto mat = gimlet::make_elastic_material(1000.0, 1000.0, 0.3);
-    scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-0.1, -0.1), 2, "upper disk");
-    scene.add_body(gimlet::scene::ball<S>(S::vector(0.25, 0.25), 0.2), mat, S::vector(0.1, 0.1), 2, "lower disk");
+    const auto scene = two_disks(0.05, true);
     gimlet::solver_options<S> options;
     options.processes = gimlet::mpi::make_ranks(comm);
     elastic_solver one(scene), many(scene, options);

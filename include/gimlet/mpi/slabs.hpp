@@ -161,26 +161,6 @@ public:
         outgoing_.clear();
     }
 
-    /// The exchange of one pass over `arrays`, for detail::slab_schedule::for_each.
-    class pass {
-    public:
-        /// The pass over `arrays` (nodal_array::of each).
-        pass(node_fold& fold, std::vector<nodal_array> arrays) : fold_(&fold), arrays_(std::move(arrays)) {}
-        /// Whether there is more than one rank.
-        [[nodiscard]] bool active() const noexcept { return fold_->comm_.size() > 1; }
-        /// node_fold::after_colour.
-        void after_colour(int c) { fold_->after_colour(c, arrays_); }
-        /// node_fold::finish.
-        void finish() { fold_->finish(arrays_); }
-
-    private:
-        node_fold* fold_;
-        std::vector<nodal_array> arrays_;
-    };
-
-    /// The exchange of a pass that writes `arrays` (nodal_array::of each).
-    [[nodiscard]] pass exchange(std::vector<nodal_array> arrays) { return pass(*this, std::move(arrays)); }
-
 private:
     [[nodiscard]] static std::size_t band_bytes(const band& b, std::span<const nodal_array> arrays) {
         std::size_t bytes = 0;

@@ -102,8 +102,7 @@ public:
         const auto rows = static_cast<std::size_t>(grid.nodes(S::dim - 1));
         shared_row_.assign(rows, 0);
         for (const shared_node& sn : shared_) shared_row_[std::size_t(grid.layer(sn.node))] = 1;
-        if (on) sum_mass_gradients_across(grid, stencils, mass, entries_of, for_each_particle);
-        else sum_mass_gradients(grid, stencils, mass, entries_of, for_each_particle);
+        sum_mass_gradients(grid, stencils, mass, entries_of, for_each_particle, on != nullptr);
         normals(threads, parallel);
         reaches(grid, stencils, entries_of, for_each_particle);
         if (on) combine_reaches(*on);
@@ -328,12 +327,15 @@ private:
     // slab as the scatter visits them, so each node's sum has the scatter's terms in the
     // scatter's order, whatever the thread count. G is the gradient with respect to the particle
     // position, so the sum points out of the body (docs/physics.md section 3; Bardenhagen et al.
-    // 2000, eq. 16).
+    // 2000, eq. 16). `across` (many processes): the same sums into a nodal array (field x node)
+    // whose bands the scatter's exchange completes in the one-process order, then copied to the
+    // shared fields.
     template <class Stencils, class Masses, class Entries, class ForEach>
     void sum_mass_gradients(const grid<S>& grid, const Stencils& stencils, const Masses& mass, const Entries& entries_of,
-                            ForEach& for_each_particle) {
+                            ForEach& for_each_particle, bool across) {
         const std::size_t nodes = grid.size();
-        for_each_particle(shared_row_, [&](std::size_t i) {
+        if (across) gradient_.assign(grid.entries(), vector::Zero());
+        auto particle = [&](std::size_t i) {
             auto entry = entries_of(i);
             const real mp = mass[i];
             stencils[i].for_each([&](std::size_t node, real, const vector& g) {
@@ -344,37 +346,13 @@ private:
                 const std::size_t field = (e - node) / nodes;
                 for (std::size_t a = 0; a < sn.count; ++a)
                     if (shared_field_[sn.first_field + a] == field) {
-                        shared_normal_[sn.first_field + a] += mp * g;
+                        (across ? gradient_[e] : shared_normal_[sn.first_field + a]) += mp * g;
                         return;
                     }  // else below the cut-off at this node
             });
-        });
-    }
-
-    // sum_mass_gradients on many processes: the same sums, into a nodal array (field x node)
-    // whose bands the scatter's exchange completes in the one-process order, then copied to
-    // the shared fields.
-    template <class Stencils, class Masses, class Entries, class ForEach>
-    void sum_mass_gradients_across(const grid<S>& grid, const Stencils& stencils, const Masses& mass,
-                                   const Entries& entries_of, ForEach& for_each_particle) {
-        const std::size_t nodes = grid.size();
-        gradient_.assign(grid.entries(), vector::Zero());
-        for_each_particle(shared_row_, [&](std::size_t i) {
-            auto entry = entries_of(i);
-            const real mp = mass[i];
-            stencils[i].for_each([&](std::size_t node, real, const vector& g) {
-                const std::size_t e = entry(node);  // asked at every node, in order
-                const std::ptrdiff_t s = shared_index_[node];
-                if (s < 0) return;
-                const shared_node& sn = shared_[std::size_t(s)];
-                const std::size_t field = (e - node) / nodes;
-                for (std::size_t a = 0; a < sn.count; ++a)
-                    if (shared_field_[sn.first_field + a] == field) {
-                        gradient_[e] += mp * g;
-                        return;
-                    }
-            });
-        }, gradient_);
+        };
+        if (!across) return for_each_particle(shared_row_, particle);
+        for_each_particle(shared_row_, particle, gradient_);
         for (const shared_node& sn : shared_)
             for (std::size_t a = 0; a < sn.count; ++a)
                 shared_normal_[sn.first_field + a] = gradient_[shared_field_[sn.first_field + a] * nodes + sn.node];

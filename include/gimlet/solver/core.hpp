@@ -42,6 +42,7 @@
 #include <cassert>
 #include <chrono>
 #include <concepts>
+#include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -374,8 +375,13 @@ private:
     // the one-process order (processes::after_colour).
     template <class F, class... Arrays>
     void for_each_particle_by_slab_into(F&& f, Arrays&... arrays) {
-        detail::fold_exchange<sizeof...(Arrays)> exchange{processes(), {nodal_array::of(arrays, grid_.size())...}};
-        slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f), exchange);
+        slabs_.for_each(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f),
+                        fold_of(arrays...));
+    }
+    // The exchange of a slab pass that adds into `arrays` (none on one process).
+    template <class... Arrays>
+    [[nodiscard]] auto fold_of(Arrays&... arrays) {
+        return detail::fold_exchange<sizeof...(Arrays)>{processes(), {nodal_array::of(arrays, grid_.size())...}};
     }
     // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
     // or rows given to its view) must be one flag per row of the last axis: `what` names them.
@@ -392,9 +398,8 @@ private:
         if constexpr (sizeof...(Arrays) == 0) {
             slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(), std::forward<F>(f));
         } else {
-            detail::fold_exchange<sizeof...(Arrays)> exchange{processes(), {nodal_array::of(arrays, grid_.size())...}};
             slabs_.for_each_reaching(rows, std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads(),
-                                     std::forward<F>(f), exchange);
+                                     std::forward<F>(f), fold_of(arrays...));
         }
     }
 
@@ -545,6 +550,13 @@ private:
     // Particles whose stencils start in another process's slabs go there, each process's kept in
     // ordinal order (after compute_stencils).
     void migrate();
+    // A particle's record for another process (its ordinal, then its columns' bytes): its size,
+    // particle i's appended to `out` (`record`: the size), a record read into particle k of `to`;
+    // particle i of `from` copied to particle k of `to`.
+    [[nodiscard]] std::size_t record_bytes() const;
+    void append_record(std::size_t i, std::size_t record, std::vector<std::byte>& out) const;
+    static void read_record(const std::byte* record, store_type& to, std::size_t k);
+    static void copy_particle(const store_type& from, std::size_t i, store_type& to, std::size_t k);
     // After a sort: the ordinals renumbered to the one-process order (sort_by_cell's keys are
     // ordered by slab, and each process owns consecutive slabs).
     void renumber();

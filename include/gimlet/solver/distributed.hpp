@@ -87,7 +87,6 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
     for (int s = 0; s < slabs; ++s)
         if (p.owner(s) == me) first = std::min(first, s), last = std::max(last, s);
     const auto per_row = std::size_t(grid_.stride(dim - 1));
-    const int rows = slabs_.rows();
     window_.clear();
     if (last < 0) return;
     // The band above: the first rows of the next slab (on a periodic axis, of slab 0 after the last).
@@ -96,7 +95,42 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
     window_.push_back({std::size_t(slabs_.first_row(first)) * per_row, std::size_t(end) * per_row});
     if (last + 1 == slabs && slabs_.periodic() && slabs > 1 && first > 0)
         window_.push_back({0, std::size_t(std::min(slabs_.end_row(0), slabs_.slab_rows)) * per_row});
-    (void)rows;
+}
+
+// A particle's record for another process: its ordinal, then each column's value, byte for byte.
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+std::size_t solver_core<S, Sh, M, Fields, MultiField, Part>::record_bytes() const {
+    std::size_t bytes = sizeof(std::uint64_t);
+    particles_.for_each_column([&](auto, const auto& column) { bytes += sizeof(column[0]); });
+    return bytes;
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::append_record(std::size_t i, std::size_t record,
+                                                                    std::vector<std::byte>& out) const {
+    std::size_t at = out.size();
+    out.resize(at + record);
+    std::memcpy(out.data() + at, &ordinal_[i], sizeof(std::uint64_t));
+    at += sizeof(std::uint64_t);
+    particles_.for_each_column([&](auto, const auto& column) {
+        std::memcpy(out.data() + at, &column[i], sizeof(column[i]));
+        at += sizeof(column[i]);
+    });
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::read_record(const std::byte* record, store_type& to, std::size_t k) {
+    std::size_t at = sizeof(std::uint64_t);
+    to.for_each_column([&](auto, auto& column) {
+        std::memcpy(static_cast<void*>(&column[k]), record + at, sizeof(column[k]));
+        at += sizeof(column[k]);
+    });
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::copy_particle(const store_type& from, std::size_t i, store_type& to,
+                                                                    std::size_t k) {
+    from.for_each_column([&](auto tag, const auto& column) { to.template column<decltype(tag)>()[k] = column[i]; });
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
@@ -109,10 +143,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
         if (processes()->owner(int(slab[i])) == me) kept.push_back(i);
     store_type mine;
     mine.resize(kept.size());
-    particles_.for_each_column([&](auto tag, const auto& column) {
-        auto& to = mine.template column<decltype(tag)>();
-        for (std::size_t k = 0; k < kept.size(); ++k) to[k] = column[kept[k]];
-    });
+    for (std::size_t k = 0; k < kept.size(); ++k) copy_particle(particles_, kept[k], mine, k);
     particles_ = std::move(mine);
     ordinal_.assign(kept.begin(), kept.end());
     compute_stencils();
@@ -124,9 +155,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
     const int me = p.rank();
     const auto ranks = std::size_t(p.size());
     const auto& slab = slabs_.slab_of();
-    // A particle's record: its ordinal, then each column's value, byte for byte.
-    std::size_t record = sizeof(std::uint64_t);
-    particles_.for_each_column([&](auto, const auto& column) { record += sizeof(column[0]); });
+    const std::size_t record = record_bytes();
     std::vector<std::vector<std::byte>> out(ranks);
     std::vector<std::size_t> staying;
     staying.reserve(particles_.size());
@@ -136,15 +165,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
             staying.push_back(i);
             continue;
         }
-        auto& bytes = out[std::size_t(to)];
-        std::size_t at = bytes.size();
-        bytes.resize(at + record);
-        std::memcpy(bytes.data() + at, &ordinal_[i], sizeof(std::uint64_t));
-        at += sizeof(std::uint64_t);
-        particles_.for_each_column([&](auto, const auto& column) {
-            std::memcpy(bytes.data() + at, &column[i], sizeof(column[i]));
-            at += sizeof(column[i]);
-        });
+        append_record(i, record, out[std::size_t(to)]);
     }
     const auto in = p.all_to_all(out);
     std::size_t arriving = 0;
@@ -167,16 +188,11 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
     std::sort(order.begin(), order.end());
     store_type merged;
     merged.resize(order.size());
-    std::size_t offset = sizeof(std::uint64_t);  // of the column in a record
-    particles_.for_each_column([&](auto tag, const auto& column) {
-        auto& to = merged.template column<decltype(tag)>();
-        for (std::size_t k = 0; k < order.size(); ++k) {
-            const std::size_t from = order[k].second;
-            if (from < particles_.size()) to[k] = column[from];
-            else std::memcpy(static_cast<void*>(&to[k]), arrival[from - particles_.size()] + offset, sizeof(to[k]));
-        }
-        offset += sizeof(column[0]);
-    });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const std::size_t from = order[k].second;
+        if (from < particles_.size()) copy_particle(particles_, from, merged, k);
+        else read_record(arrival[from - particles_.size()], merged, k);
+    }
     particles_ = std::move(merged);
     ordinal_.resize(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) ordinal_[k] = order[k].first;
@@ -193,35 +209,22 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 auto solver_core<S, Sh, M, Fields, MultiField, Part>::gathered_particles() const -> store_type {
     auto* p = processes();
     if (!p) return particles_;
-    std::size_t record = sizeof(std::uint64_t);
-    particles_.for_each_column([&](auto, const auto& column) { record += sizeof(column[0]); });
+    const std::size_t record = record_bytes();
     std::vector<std::vector<std::byte>> out(std::size_t(p->size()));
-    auto& bytes = out[0];
-    bytes.resize(particles_.size() * record);
-    std::size_t at = 0;
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-        std::memcpy(bytes.data() + at, &ordinal_[i], sizeof(std::uint64_t));
-        at += sizeof(std::uint64_t);
-        particles_.for_each_column([&](auto, const auto& column) {
-            std::memcpy(bytes.data() + at, &column[i], sizeof(column[i]));
-            at += sizeof(column[i]);
-        });
-    }
+    out[0].reserve(particles_.size() * record);
+    for (std::size_t i = 0; i < particles_.size(); ++i) append_record(i, record, out[0]);
     const auto in = p->all_to_all(out);
     store_type whole;
     if (p->rank() != 0) return whole;
     std::size_t total = 0;
     for (const auto& b : in) total += b.size() / record;
     whole.resize(total);
+    // Ordinals are 0 .. total - 1: each record goes to its ordinal's place.
     for (const auto& b : in)
         for (std::size_t r = 0; r < b.size(); r += record) {
             std::uint64_t n = 0;
             std::memcpy(&n, b.data() + r, sizeof n);
-            std::size_t offset = r + sizeof(std::uint64_t);
-            whole.for_each_column([&](auto, auto& column) {
-                std::memcpy(static_cast<void*>(&column[n]), b.data() + offset, sizeof(column[n]));
-                offset += sizeof(column[n]);
-            });
+            read_record(b.data() + r, whole, std::size_t(n));
         }
     return whole;
 }

@@ -116,8 +116,9 @@ struct solver_options {
     bool volumetric_average = false;
     /// The processes the run is split between (gimlet::mpi::make_ranks: the grid's slabs along
     /// its last axis, each process the particles of its own); null, the default: one process.
-    /// Every process builds the same scene and runs the same calls; particle states, time steps
-    /// and the library's diagnostics are bitwise those of one process, for any number of them.
+    /// Every process builds the same scene and runs the same calls; particle states, time steps,
+    /// the conservation sums and hot_material are bitwise those of one process, for any number of
+    /// them (docs/guide.md, "Many processes (MPI)", lists what is refused).
     std::shared_ptr<gimlet::processes> processes;
 
     /// \throws gimlet::invalid_parameter naming the first option outside its valid range, or a
