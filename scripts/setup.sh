@@ -18,8 +18,9 @@ case "${1:-}" in
     # slowest tests and units; VTK's Python module reads our .vtp files back in the
     # independent-reader test (tests/io/independent/); numpy runs the flagship's map painter
     # (tests/examples/test_plot_raster.py); Doxygen builds the API reference, whose warnings fail
-    # the run (the `docs` target).
-    --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9 python3-numpy doxygen) ;;
+    # the run (the `docs` target); Open MPI builds and runs the MPI component's tests.
+    --tests) packages+=(clang libomp-dev libclang-rt-dev python3 python3-vtk9 python3-numpy doxygen libopenmpi-dev
+                        openmpi-bin) ;;
     # the plots and the per-phase roofline's instruction counts (valgrind's callgrind, objdump);
     # perf for the flagship's serial share is optional (below)
     --bench) packages+=(python3-matplotlib python3-numpy valgrind binutils) ;;

@@ -478,9 +478,10 @@ struct self_contact_unhinted : self_contact {
         const gimlet::multi_field::partition_view<std::remove_reference_t<decltype(view.particles)>,
                                                   std::remove_cvref_t<decltype(view.stencils)>,
                                                   std::remove_cvref_t<decltype(view.grid)>, by_slab,
-                                                  std::remove_cvref_t<decltype(view.for_each_index)>>
+                                                  std::remove_cvref_t<decltype(view.for_each_index)>,
+                                                  std::remove_cvref_t<decltype(view.across)>>
             plain{view.particles, view.stencils, view.grid, view.bodies, by_slab{view.for_each_particle_by_slab},
-                  view.for_each_index};
+                  view.for_each_index, view.across};
         self_contact::prepare(plain);
     }
 

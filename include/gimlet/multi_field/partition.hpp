@@ -50,6 +50,14 @@ namespace gimlet::multi_field {
 /// Particle indices are those of the store at the time of the call: the solver renumbers the
 /// particles when it sorts them (solver_options::sort_interval), so per-particle state belongs
 /// in `required_fields`, not in members indexed by particle.
+///
+/// On many processes (solver_options::processes) each process holds its own particles only, so
+/// a hook's per-node arrays see part of the particles at the nodes two processes share. A
+/// partition with a hook runs there only if it says it completes them, `static constexpr bool
+/// distributes = true`, through its view's `across` (multi_field::partition_view); the solver
+/// refuses any other by name. A partition without hooks (its side() reads the particle alone)
+/// runs on many processes as it is. The solver asks every process's splits() and splits where
+/// any does.
 template <class P>
 concept Partition = requires {
     { P::fields_per_body } -> std::convertible_to<std::size_t>;
@@ -79,7 +87,26 @@ concept Partition = requires {
 /// loops (the rows' form keeps the slabs it visits in the solver). `for_each_index(count, f)` calls f(k) for every k in [0, count), split
 /// between the solver's threads when count is large (a grid's entries): for per-node work
 /// where f(k) writes only entry k. f must not throw.
-template <class Store, class Stencils, class Grid, class BySlab, class ByIndex>
+///
+/// `across` completes what crosses processes (solver_options::processes), so that a hook's
+/// results are those of one process whatever their number; on one process each of its members
+/// is the identity, at no cost. Every process calls its collective members (all but ordinal
+/// and owns) alike, in the same order:
+/// - `across.ordinal(i)`: particle i's index in the one-process run (i on one process), for a
+///   choice between particles by index;
+/// - `across.for_each_particle_by_slab_into(f, arrays...)`: for_each_particle_by_slab(f) for an
+///   f that adds into `arrays` (std::vectors of whole blocks of grid.size() per-node values,
+///   numbers or fixed-size Eigen vectors), each node's sums completed on every process that
+///   holds it, in the one-process order;
+/// - `across.merge_shared(blocks, get, merge)`: for per-node values combined in any order (a
+///   maximum, a minimum, an or): at each node two processes both hold, in each of `blocks`
+///   blocks of grid.size() entries, merge(e, theirs) with theirs the other process's get(e) (a
+///   trivially copyable value); merge must leave both processes with the same value at e;
+/// - `across.max(x)` (a double), `across.sum(n)` (a std::uint64_t), `across.any(flag)`: over
+///   every process;
+/// - `across.owns(node)`: whether the node counts as this process's (each node is one
+///   process's), for a count over nodes.
+template <class Store, class Stencils, class Grid, class BySlab, class ByIndex, class Across>
 struct partition_view {
     /// The particles: writable in `initialize`, read-only in `prepare`.
     Store& particles;
@@ -93,6 +120,9 @@ struct partition_view {
     BySlab for_each_particle_by_slab;
     /// `for_each_index(count, f)`: f(k) for k in [0, count), split between the solver's threads.
     ByIndex for_each_index;
+    /// What crosses processes (ordinal, for_each_particle_by_slab_into, merge_shared, max, sum,
+    /// any, owns), described above.
+    Across across;
 };
 
 /// One velocity field per body (Bardenhagen et al. 2000): the default. A body never touches

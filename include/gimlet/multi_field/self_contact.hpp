@@ -62,11 +62,17 @@ namespace multi_field {
 ///   it lies on: two fields at most per body and node, never a failure.
 /// - `enabled = false` keeps one field per body everywhere (results as multi_field::by_body);
 ///   a scene without voids pays for `prepare` only.
+/// - On many processes (solver_options::processes) the mass gradients are completed across
+///   them in the one-process order, and at the nodes two processes share the reference
+///   direction (the larger key, ties to the lower ordinal), the fronts (the farther) and a
+///   particle in the gap (either's) are merged: the same split nodes and planes as one process.
 struct self_contact {
     /// Keeps each particle's reference surface normal.
     using required_fields = field_list<fields::surface_normal>;
     /// Two fields per body: the two sides of a closing void.
     static constexpr std::size_t fields_per_body = 2;
+    /// Its hooks complete their per-node arrays across processes (multi_field::Partition).
+    static constexpr bool distributes = true;
 
     /// False: one field per body everywhere (as multi_field::by_body).
     bool enabled = true;
@@ -91,11 +97,13 @@ struct self_contact {
         // Each body's mass gradient at the nodes: sum_q m_q G_iq points out of the body
         // (Bardenhagen et al. 2000, eq. 16).
         std::vector<vector> gradient(view.bodies * nodes, vector::Zero());
-        view.for_each_particle_by_slab([&](std::size_t i) {
-            const std::size_t base = std::size_t(body[i]) * nodes;
-            view.stencils[i].for_each(
-                [&](std::size_t node, real, const vector& g) { gradient[base + node] += mass[i] * g; });
-        });
+        view.across.for_each_particle_by_slab_into(
+            [&](std::size_t i) {
+                const std::size_t base = std::size_t(body[i]) * nodes;
+                view.stencils[i].for_each(
+                    [&](std::size_t node, real, const vector& g) { gradient[base + node] += mass[i] * g; });
+            },
+            gradient);
         std::vector<real> largest(view.bodies, real(0));
         for (std::size_t i = 0; i < n; ++i) {
             const std::size_t base = std::size_t(body[i]) * nodes;
@@ -104,6 +112,7 @@ struct self_contact {
             normal[i] = at;
             largest[body[i]] = std::max(largest[body[i]], real(at.norm()));
         }
+        for (auto& top : largest) top = real(view.across.max(double(top)));  // exact: a maximum
         for (std::size_t i = 0; i < n; ++i) {
             const real top = largest[body[i]];
             const real size = top > 0 ? real(normal[i].norm()) / top : real(0);
@@ -128,7 +137,9 @@ struct self_contact {
         reset_entries(view, entries);
         reference_directions(view);
         fronts(view);
-        const bool any = find_candidates(view, entries);
+        // Every process looks for particles in the gaps if any has a candidate (its passes merge
+        // the nodes they share).
+        const bool any = view.across.any(find_candidates(view, entries));
         if (any) empty_gaps(view);
         count_split(view, entries, any);
     }
@@ -260,6 +271,39 @@ private:
                 if (key > best_[e] || (key == best_[e] && i < best_particle_[e])) best_[e] = key, best_particle_[e] = i;
             });
         });
+        merge_reference_directions(view);
+    }
+
+    // At the nodes two processes share, the reference particle of the two with the larger key,
+    // ties to the lower ordinal (within a process, indices run in ordinal order), as one process
+    // picks it among them all; its direction travels, as the first particle of pass 2 would set
+    // it. One process: nothing to merge.
+    template <class View>
+    void merge_reference_directions(const View& view) {
+        using S = space_of<View>;
+        constexpr int dim = S::dim;
+        struct reference {
+            double key = none;
+            std::uint64_t ordinal = std::numeric_limits<std::uint64_t>::max();
+            double unit[dim] = {};
+        };
+        const std::size_t n = view.particles.size();
+        const auto mine = [&](std::size_t e) {
+            reference r;
+            if (best_[e] == none) return r;
+            r.key = best_[e], r.ordinal = view.across.ordinal(best_particle_[e]);
+            const typename S::vector u = unit<S>(e, n);
+            for (int d = 0; d < dim; ++d) r.unit[d] = double(u[d]);
+            return r;
+        };
+        view.across.merge_shared(view.bodies, mine, [&](std::size_t e, const reference& theirs) {
+            const std::uint64_t ours =
+                best_[e] == none ? std::numeric_limits<std::uint64_t>::max() : view.across.ordinal(best_particle_[e]);
+            if (!(theirs.key > best_[e] || (theirs.key == best_[e] && theirs.ordinal < ours))) return;
+            best_[e] = theirs.key, best_particle_[e] = std::numeric_limits<std::size_t>::max() - 1;  // another process's
+            for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = theirs.unit[d];
+            unit_set_[e] = 1;
+        });
     }
 
     // Pass 2: the fronts of the particles facing along e and against it. (The nodes' positions
@@ -287,6 +331,16 @@ private:
                 if (facing < -0.5) front_against_[e] = std::min(front_against_[e], along);
             });
         });
+        // The nodes two processes share: the farther fronts of the two (a maximum and a minimum).
+        struct pair {
+            double along, against;
+        };
+        view.across.merge_shared(
+            view.bodies, [&](std::size_t e) { return pair{front_along_[e], front_against_[e]}; },
+            [&](std::size_t e, const pair& theirs) {
+                front_along_[e] = std::max(front_along_[e], theirs.along);
+                front_against_[e] = std::min(front_against_[e], theirs.against);
+            });
     }
 
     // A node is a candidate where both fronts exist and the surface facing against e lies beyond
@@ -334,6 +388,12 @@ private:
         } else {
             view.for_each_particle_by_slab(empty_gap);
         }
+        // The nodes two processes share: a particle in the gap on either is in it.
+        view.across.merge_shared(
+            view.bodies, [&](std::size_t e) { return split_[e]; },
+            [&](std::size_t e, std::uint8_t theirs) {
+                if (theirs == 2) split_[e] = 2;
+            });
     }
 
     // The split nodes: the candidates left (without a candidate every entry is 0 already). A
@@ -345,15 +405,21 @@ private:
     void count_split(const View& view, std::size_t entries, bool any) {
         constexpr int dim = space_of<View>::dim;
         const std::size_t nodes = view.grid.size();
-        std::atomic<std::size_t> split_count{0};
+        // The split entries this process holds, and those of the nodes it owns (each node is one
+        // process's): their sum over the processes counts every split node once.
+        std::atomic<std::size_t> held{0}, owned{0};
         if (any) {
             view.for_each_index(entries, [&](std::size_t e) {
-                if (split_[e] != 1) split_[e] = 0;
-                else split_count.fetch_add(1, std::memory_order_relaxed);
+                if (split_[e] != 1) {
+                    split_[e] = 0;
+                    return;
+                }
+                held.fetch_add(1, std::memory_order_relaxed);
+                if (view.across.owns(e % nodes)) owned.fetch_add(1, std::memory_order_relaxed);
             });
         }
-        split_nodes_ = split_count.load();
-        if (split_nodes_ > 0) flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] != 0; }, split_rows_);
+        split_nodes_ = std::size_t(view.across.sum(owned.load()));
+        if (held.load() > 0) flag_rows(view.grid, nodes, [&](std::size_t e) { return split_[e] != 0; }, split_rows_);
         else split_rows_.assign(std::size_t(view.grid.nodes(dim - 1)), 0);
         nodes_ = nodes;
         grid_length_.assign(std::size_t(dim), 0.0);

@@ -468,13 +468,44 @@ private:
                 for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
         }
     };
+    struct across_caller {
+        solver_core* self;
+        [[nodiscard]] std::uint64_t ordinal(std::size_t i) const noexcept { return self->ordinal(i); }
+        template <class F, class... Arrays>
+        void for_each_particle_by_slab_into(F&& f, Arrays&... arrays) const {
+            self->for_each_particle_by_slab_into(std::forward<F>(f), arrays...);
+        }
+        template <class Get, class Merge>
+        void merge_shared(std::size_t blocks, Get&& get, Merge&& merge) const {
+            self->merge_shared(blocks, get, merge);
+        }
+        [[nodiscard]] double max(double x) const {
+            auto* p = self->processes();
+            return p ? p->max(x) : x;
+        }
+        [[nodiscard]] std::uint64_t sum(std::uint64_t n) const {
+            auto* p = self->processes();
+            return p ? p->sum(n) : n;
+        }
+        [[nodiscard]] bool any(bool flag) const {
+            auto* p = self->processes();
+            return p ? p->sum(std::uint64_t(flag)) > 0 : flag;
+        }
+        [[nodiscard]] bool owns(std::size_t node) const { return self->owns_node(node); }
+    };
     template <class Store>
     using partition_view_type =
-        multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller, index_caller>;
+        multi_field::partition_view<Store, std::vector<stencil_type>, grid<S>, slab_caller, index_caller, across_caller>;
     template <class Store>
     [[nodiscard]] partition_view_type<Store> partition_view() {
-        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}, index_caller{this}};
+        return {particles_, stencils_, grid_, materials_.size(), slab_caller{this}, index_caller{this}, across_caller{this}};
     }
+    // At every node two processes both hold, in `blocks` blocks of the grid's nodes, entry e:
+    // merge(e, the other process's get(e)) (partition_view's across.merge_shared).
+    template <class Get, class Merge>
+    void merge_shared(std::size_t blocks, Get& get, Merge& merge);
+    // Whether node `node` counts as this process's: its row's slab is (always, on one process).
+    [[nodiscard]] bool owns_node(std::size_t node) const;
     // Whether the partition has the optional prepare hook, asked each step (stages::field_choice;
     // multi_field::check, above, refuses one in a form this would miss). The view is a const
     // lvalue, so `prepare(const View&)` and a template `prepare(View&)` both take it.
@@ -484,7 +515,8 @@ private:
     static constexpr bool partition_initializes = requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); };
     // What runs on many processes so far (detail::check_distributable refuses the rest).
     static constexpr bool distributable =
-        !has_driven_particles && !axisymmetric && !partition_prepares && !partition_initializes && fields_per_body == 1;
+        !has_driven_particles && !axisymmetric &&
+        ((!partition_prepares && !partition_initializes) || requires { requires Part::distributes; });
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {

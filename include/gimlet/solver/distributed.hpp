@@ -15,6 +15,8 @@
 #include <limits>
 #include <regex>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace gimlet {
@@ -235,6 +237,50 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::replace_particles(const st
     state_touched_ = true;
     pending_health_.valid = false;
     if (processes()) keep_own_particles();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+template <class Get, class Merge>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::merge_shared(std::size_t blocks, Get& get, Merge& merge) {
+    using value = std::remove_cvref_t<std::invoke_result_t<Get&, std::size_t>>;
+    static_assert(std::is_trivially_copyable_v<value>, "across.merge_shared: get(e) returns a value copied byte for byte");
+    auto* p = processes();
+    if (!p) return;
+    const auto bands = p->bands();
+    const std::size_t nodes = grid_.size();
+    std::vector<std::vector<std::byte>> out(bands.size());
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+        out[b].resize(blocks * bands[b].count * sizeof(value));
+        std::byte* at = out[b].data();
+        for (std::size_t k = 0; k < blocks; ++k)
+            for (std::size_t node = bands[b].first; node < bands[b].first + bands[b].count; ++node, at += sizeof(value)) {
+                const value v = get(k * nodes + node);
+                std::memcpy(at, &v, sizeof(value));
+            }
+    }
+    const auto in = p->swap(out);
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+        // Both processes pass the same blocks of the same band (the exchange sizes them alike).
+        if (in[b].size() != out[b].size())
+            throw numerical_error("across.merge_shared: the process sharing a band sent " + std::to_string(in[b].size()) +
+                                  " bytes for " + std::to_string(out[b].size()) +
+                                  ": every process must pass the same number of blocks");
+        const std::byte* at = in[b].data();
+        for (std::size_t k = 0; k < blocks; ++k)
+            for (std::size_t node = bands[b].first; node < bands[b].first + bands[b].count; ++node, at += sizeof(value)) {
+                value theirs;
+                std::memcpy(&theirs, at, sizeof(value));
+                merge(k * nodes + node, std::as_const(theirs));
+            }
+    }
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+bool solver_core<S, Sh, M, Fields, MultiField, Part>::owns_node(std::size_t node) const {
+    auto* p = processes();
+    if (!p) return true;
+    const int row = int(node / std::size_t(grid_.stride(dim - 1)));
+    return p->owner(std::min(row / slabs_.slab_rows, slabs_.slabs() - 1)) == p->rank();
 }
 
 }  // namespace gimlet

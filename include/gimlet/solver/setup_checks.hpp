@@ -67,16 +67,16 @@ void check_options_for(const solver_options<S>& options, bool has_reference_isen
 }
 
 /// On many processes (solver_options::processes): what the distributed step does not do yet,
-/// refused by name. `Unsupported`: driven particles, an axisymmetric space or a partition of
-/// bodies into several fields; `light_possible`: whether any particle can be
+/// refused by name. `Unsupported`: driven particles, an axisymmetric space or a partition with
+/// hooks that does not say it distributes (multi_field::Partition); `light_possible`: whether any particle can be
 /// light (stages::light_particles), over the whole scene.
 template <bool Unsupported, class S>
 void check_distributable(const solver_options<S>& options, bool light_possible) {
     const std::string what = "on many processes (solver_options::processes), which do not distribute it yet";
     if constexpr (Unsupported)
         throw invalid_parameter("solver_options::processes with this solver", "set",
-                                "null: partitions of bodies into fields (self-contact), driven particles and "
-                                "axisymmetric spaces run on one process so far");
+                                "null: driven particles, axisymmetric spaces and partitions with hooks that do not "
+                                "say they distribute (multi_field::Partition's distributes) run on one process so far");
     if (options.volume_filter) throw invalid_parameter("volume_filter", "true", "false " + what);
     if (options.volumetric_average) throw invalid_parameter("volumetric_average", "true", "false " + what);
     if (light_possible)

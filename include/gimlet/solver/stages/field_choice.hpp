@@ -67,7 +67,12 @@ public:
             if constexpr (requires(const Part& p) {
                               { p.splits() } -> std::convertible_to<bool>;
                           })
+            {
                 split_now_ = c.partition_.splits();
+                // Every process sweeps the same field slots (the nodes they share are summed
+                // across them): a split on any is a split on all.
+                if (auto* p = c.processes()) split_now_ = p->sum(std::uint64_t(split_now_)) > 0;
+            }
             swept_ = split_now_ || !later_fields_empty_ ? FieldsPerBody : 1;
             if (split_now_) later_fields_empty_ = false;  // this step writes there, even if it stops part-way
             choose(c);
