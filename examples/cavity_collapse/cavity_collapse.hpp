@@ -451,8 +451,9 @@ public:
     // threads from parallel_from particles. Each thread folds std::max over its particles, and
     // OpenMP joins the threads' maxima with the 0 the loop starts from: a maximum does not
     // depend on how the particles are shared, and 1 - J is never -0, so the bits are the
-    // serial loop's whatever the thread count. It runs every step: one thread over every
-    // particle would be a serial part of each step (docs/performance.md).
+    // serial loop's whatever the thread count, and on many processes (the largest of theirs).
+    // It runs every step: one thread over every particle would be a serial part of each step
+    // (docs/performance.md).
     template <class Solver>
     static double largest_compression(const Solver& sol) {
         const auto& p = sol.particles();
@@ -460,13 +461,15 @@ public:
         double eta = 0;
         GIMLET_OMP(parallel for reduction(max : eta) num_threads(sol.threads()) if (n >= std::ptrdiff_t(parallel_from)))
         for (std::ptrdiff_t i = 0; i < n; ++i) eta = std::max(eta, 1.0 - double(gimlet::jacobian(p[std::size_t(i)])));
+        if (gimlet::processes* many = sol.processes()) eta = many->max(eta);
         return eta;
     }
 
     // The mass-weighted mean 1 - J of the particles whose centres lie within `radius` of
     // `centre`: the disc the hot spot's temperature averages (diagnostics::hot_spot). Its sums are
-    // exact until read (gimlet::exact_sum), so they do not depend on the particle order; it runs
-    // only on the steps that raise the hot spot's peak, one serial pass over the particles.
+    // exact until read (gimlet::exact_sum), so they do not depend on the particle order nor on the
+    // processes; it runs only on the steps that raise the hot spot's peak, one serial pass over
+    // the particles.
     template <class Solver>
     static double disc_compression(const Solver& sol, const Vector& centre, double radius) {
         const auto& p = sol.particles();
@@ -478,6 +481,7 @@ public:
             mass += double(m[i]);
             eta += double(m[i]) * (1.0 - double(gimlet::jacobian(p[i])));
         }
+        if (gimlet::processes* many = sol.processes()) mass = many->sum(mass), eta = many->sum(eta);
         return mass.value() > 0 ? eta.value() / mass.value() : -1.0;
     }
 
@@ -562,6 +566,8 @@ public:
                     if (body[i] == lines[j].body && std::abs(x[i][1] - lines[j].point[1]) <= strip &&
                         std::abs(x[i][2] - lines[j].point[2]) <= strip)
                         edge[j] = std::min(edge[j], double(x[i][0] - half[i][0]));
+            if (gimlet::processes* many = sol.processes())
+                for (auto& e : edge) e = many->min(e);  // exact: a minimum
             for (std::size_t j = 0; j < lines.size(); ++j)
                 if (std::isfinite(edge[j]) && 2 * edge[j] > min_width) out[j] = 2 * edge[j];
         }

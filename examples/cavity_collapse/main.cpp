@@ -28,11 +28,16 @@
 // the same outputs. Exit status: 0 done, 1 bad
 // input or I/O error, 3 stopped by the library (numerical trouble; the outputs so far are
 // written and summary.csv's status says why).
+// Built with MPI (gimlet::mpi, where the toolchain has it), it runs on many processes too,
+// `mpirun -np 2 cavity_collapse --threads 1 ...`: the same files, bit for bit (summary.csv's
+// ranks column aside, and its wall time), written by the first process, which alone prints and
+// draws; a checkpoint resumes on any number of processes.
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "cavity_collapse/flags.hpp"
 #include "common/cli.hpp"
 #include "common/particle_map.hpp"
 #include "common/plotter.hpp"
+#include "common/processes.hpp"
 #include "common/restart.hpp"
 
 #include <algorithm>
@@ -140,6 +145,10 @@ struct run_files {
     std::filesystem::path restart;     // empty: a fresh run
     bool quiet = false;
     plotter* figures = nullptr;  // none: no figures
+    // On many processes: theirs (solver_options::processes); only the first one writes, prints
+    // and draws (`writer`).
+    std::shared_ptr<gimlet::processes> processes;
+    bool writer = true;
 };
 
 double value_of(const gimlet::io::checkpoint_values& v, const std::string& key, const std::filesystem::path& file) {
@@ -180,7 +189,7 @@ struct output_state {
 template <class Solver>
 output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol,
                          monitor_of<typename Solver::vector>& mon,
-                         summary& sum, const std::filesystem::path& out) {
+                         summary& sum, const std::filesystem::path& out, bool writer) {
     auto v = gimlet::io::load_checkpoint(checkpoint, sol);
     // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2), no volume
     // filter and the Courant number 0.4.
@@ -211,8 +220,10 @@ output_state resume_from(const std::filesystem::path& checkpoint, const settings
     sum.visit([&](const std::string& k, auto& x) {
         x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "summary." + k, checkpoint));
     });
-    keep_lines(out / "series.csv", at.rows + 1);
-    keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
+    if (writer) {
+        keep_lines(out / "series.csv", at.rows + 1);
+        keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
+    }
     return at;
 }
 
@@ -225,9 +236,11 @@ inline double landing_eta(const summary& sum) {
 }
 
 // summary.csv: the run's settings, its peaks and times, the health events and how it ended.
+// `particles`: the whole run's; `ranks`: the processes it ran on.
 template <class Solver>
 void write_summary(const std::filesystem::path& file, const settings& s, const Solver& sol, const summary& sum,
-                   const monitor_of<typename Solver::vector>& mon, double wall, const std::string& status) {
+                   const monitor_of<typename Solver::vector>& mon, double wall, const std::string& status,
+                   std::uint64_t particles, int ranks) {
     std::ofstream su(file);
     gimlet::io::exact_numbers(su);
     su << "velocity_m_s,radius_mm,cell_mm,contact,end_us,particles,steps,wall_s,first_contact_us,separation_us,"
@@ -238,10 +251,10 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
           "consistent_mass,viscosity_linear,viscosity_quadratic,volume_filter,cfl,hotspot_eta,landing_eta";
     for (double excess : hot_excess) su << ",max_hot_mass_above_TEP_plus_" << int(excess) << "K_" << mass_unit(s);
     for (const char* name : gimlet::health_events::names) su << ",events_" << name;
-    su << ",geometry,side,status\n";
+    su << ",geometry,side,ranks,status\n";
     auto us = [](double t) { return t < 0 ? -1.0 : t * 1e6; };
     su << s.velocity << ',' << s.radius * 1e3 << ',' << s.cell * 1e3 << ',' << name_of(s.contact) << ','
-       << s.end * 1e6 << ',' << sol.particles().size() << ',' << sol.steps() << ',' << wall << ','
+       << s.end * 1e6 << ',' << particles << ',' << sol.steps() << ',' << wall << ','
        << us(sum.first_contact) << ',' << us(sum.separation) << ',' << sum.D_max * 1e3 << ',' << us(sum.t_D_max)
        << ',' << us(sum.secondary_impact) << ',' << sum.max_wall_relative_velocity << ',' << sum.max_upstream_speed << ',' << sum.max_hot_spot << ','
        << us(sum.t_hot_spot) << ',' << sum.final_hot_spot << ',' << sum.settled_hot_spot << ',' << sum.max_temperature << ','
@@ -255,7 +268,8 @@ void write_summary(const std::filesystem::path& file, const settings& s, const S
     for (double m : sum.max_hot_mass) su << ',' << m;
     for (const auto n : sol.health().count) su << ',' << n;
     su << ',' << name_of(s.geometry) << ','
-       << (s.geometry == geometry_kind::plane ? "periodic" : s.free_side() ? "free" : "array") << ',' << status << '\n';
+       << (s.geometry == geometry_kind::plane ? "periodic" : s.free_side() ? "free" : "array") << ',' << ranks << ','
+       << status << '\n';
     su.close();
     if (!su) throw std::runtime_error("could not write " + file.string());
 
@@ -319,6 +333,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     opt.consistent_mass_iterations = s.consistent_mass;
     opt.cfl = s.cfl;
     opt.volume_filter = s.volume_filter;
+    opt.processes = io.processes;
     // Self-contact needs several fields per body, so a multi-field contact; off, its partition
     // keeps one field per body and the results are those of multi_field::by_body.
     using partition = std::conditional_t<std::is_same_v<Contact, gimlet::contact::single_field>,
@@ -342,7 +357,6 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         .template add_field<gimlet::fields::velocity>()
         .template add_field<gimlet::fields::plastic_strain>()
         .template add_field<gimlet::fields::body>();
-    std::filesystem::create_directories(out / "snapshots");
     const auto pvd_path = out / "snapshots" / "particles.pvd";
     std::optional<gimlet::io::pvd_writer> pvd;
     output_state at;
@@ -358,23 +372,35 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         return v;
     };
 
-    if (io.restart.empty()) {
-        series.open(out / "series.csv", std::ios::trunc);
-        write_header(series, s);
-        times.open(out / "snapshots" / "times.csv", std::ios::trunc);
-        times << "index,time_us,time_after_contact_us\n";
-        pvd.emplace(pvd_path);
-    } else {
-        at = resume_from(io.restart, s, sol, mon, sum, out);
-        series.open(out / "series.csv", std::ios::app);
-        times.open(out / "snapshots" / "times.csv", std::ios::app);
-        pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
-    }
-    // Exact numbers: a resumed run's rows match the uninterrupted run's.
-    gimlet::io::exact_numbers(series);
-    gimlet::io::exact_numbers(times);
-    if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
-    std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, %s %.2f mm, cell %.3f mm, %s contact, "
+    if (!io.restart.empty()) at = resume_from(io.restart, s, sol, mon, sum, out, io.writer);
+    // The writer's files; a failure to open them stops every process (together).
+    auto open_files = [&] {
+        if (!io.writer) return;
+        if (io.restart.empty()) {
+            series.open(out / "series.csv", std::ios::trunc);
+            write_header(series, s);
+            times.open(out / "snapshots" / "times.csv", std::ios::trunc);
+            times << "index,time_us,time_after_contact_us\n";
+            pvd.emplace(pvd_path);
+        } else {
+            series.open(out / "series.csv", std::ios::app);
+            times.open(out / "snapshots" / "times.csv", std::ios::app);
+            pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
+        }
+        // Exact numbers: a resumed run's rows match the uninterrupted run's.
+        gimlet::io::exact_numbers(series);
+        gimlet::io::exact_numbers(times);
+        if (!series || !times) throw std::runtime_error("cannot write the series in " + out.string());
+    };
+    if (io.processes) io.processes->together(open_files);
+    else open_files();
+    // The whole run's particles (collective).
+    const auto whole_count = [&] {
+        const std::uint64_t mine = sol.particles().size();
+        return io.processes ? io.processes->sum(mine) : mine;
+    };
+    const std::uint64_t particles = whole_count();
+    if (io.writer) std::printf("cavity_collapse: HMX blocks at +-%.0f m/s, %s %.2f mm, cell %.3f mm, %s contact, "
                 "self-contact %s, %zu particles, %s %.2f us to %.2f us\n",
                 s.velocity,
                 s.geometry == geometry_kind::plane          ? "cavity radius"
@@ -384,7 +410,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                 : s.free_side() ? "3-D (a quarter of the cylinders), spherical pore radius"
                                 : "3-D (the square array's cell), spherical pore radius",
                 s.radius * 1e3, s.cell * 1e3, name_of(s.contact).c_str(), s.self_contact ? "on" : "off",
-                sol.particles().size(),
+                static_cast<std::size_t>(particles),
                 io.restart.empty() ? "from" : "resumed at", double(sol.time()) * 1e6, s.end * 1e6);
     std::fflush(stdout);
 
@@ -394,7 +420,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     std::uint64_t sampled_step = std::numeric_limits<std::uint64_t>::max();
     auto take_sample = [&](const auto& so) {
         const auto r = mon.measure(so);
-        write_row(series, r, s);
+        if (io.writer) write_row(series, r, s);
         sum.add(r, s);
         ++at.rows;
         at.last_sample = double(so.time());
@@ -415,9 +441,12 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", at.snapshot);
         example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from, axis_coordinate(s));
-        pvd->write(vtp, so);
+        // The writer's series names the snapshot; the others take part in gathering it (the first
+        // process writes the file: the path they pass is not used).
+        if (pvd) pvd->write(vtp, so);
+        else vtp.write(pvd_path, so);
         const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
-        times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
+        if (io.writer) times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
         if (io.figures) io.figures->map(at.snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);
         ++at.snapshot;
     };
@@ -437,7 +466,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
                           v["next_listed_snapshot"] = double(listed.next);
                           v["listed_snapshots"] = double(listed.at.size());
                           gimlet::io::save_checkpoint(io.checkpoint, sol, v);
-                          std::printf("  checkpoint at %.3f us: %s\n", t * 1e6, io.checkpoint.string().c_str());
+                          if (io.writer) std::printf("  checkpoint at %.3f us: %s\n", t * 1e6, io.checkpoint.string().c_str());
                           std::fflush(stdout);
                       },
                       io.checkpoint_at, io.checkpoint.empty() || double(sol.time()) >= io.checkpoint_at};
@@ -447,27 +476,32 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     // and a summary that says where it stopped; the exit status tells scripts it did not finish.
     std::string status = "completed";
     try {
-        if (io.quiet) sol.run_until(s.end, samples, peaks, snapshots, listed, ckpt);
+        if (io.quiet || !io.writer) sol.run_until(s.end, samples, peaks, snapshots, listed, ckpt);
         else sol.run_until(s.end, samples, peaks, snapshots, listed, ckpt, bar);
     } catch (const gimlet::numerical_error& e) {
         status = std::string("stopped: ") + e.what();
         std::replace(status.begin(), status.end(), ',', ';');  // one CSV cell
-        std::fprintf(stderr, "cavity_collapse: %s\n", e.what());
+        if (io.writer) std::fprintf(stderr, "cavity_collapse: %s\n", e.what());
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (at.last_sample < double(sol.time())) take_sample(sol);  // the series always ends at the end time
+    if (!io.writer) return status == "completed" ? 0 : 3;
     series.close();
     times.close();
     if (!series || !times) throw std::runtime_error("could not write the series in " + out.string());
 
-    write_summary(out / "summary.csv", s, sol, sum, mon, wall, status);
+    write_summary(out / "summary.csv", s, sol, sum, mon, wall, status, particles,
+                  io.processes ? io.processes->size() : 1);
     print_report(s, sol, sum, mon, wall);
     return status == "completed" ? 0 : 3;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) try {
+int main(int argc, char** argv) {
+    const example::run_processes procs(argc, argv);
+    const bool writer = procs.writer();  // one process writes, prints and draws
+    try {
     // --quiet is a switch without a value; the other flags are name-value pairs.
     std::vector<char*> rest{argv[0]};
     bool quiet = false, figures_on = true;
@@ -480,7 +514,16 @@ int main(int argc, char** argv) try {
     settings s = cavity_collapse::read_settings(args);
     run_files io;
     io.quiet = quiet;
-    io.out = args.directory("output", "results/cavity_collapse");
+    io.writer = writer;
+    // The writer creates the directories and probes them; the others only take the flag. Where it
+    // cannot, every process stops (together), none waits for it in the run's exchanges.
+    const auto output = [&] {
+        io.out = writer ? args.directory("output", "results/cavity_collapse") : std::filesystem::path(args.path("output"));
+        if (io.out.empty()) io.out = "results/cavity_collapse";
+        if (writer) std::filesystem::create_directories(io.out / "snapshots");
+    };
+    procs.together(output);
+    io.processes = procs.for_solver();
     io.checkpoint = args.path("checkpoint");
     io.checkpoint_at = 1e-6 * args.real("checkpoint-at-us", 0.0, 0.0, 1000.0, true);
     io.restart = args.path("restart");
@@ -493,7 +536,7 @@ int main(int argc, char** argv) try {
     std::string plot;  // the command that draws the figures after the run
     std::optional<plotter> figures;
     const auto log = io.out / "plot.log";  // the plotter's errors
-    if (figures_on) {
+    if (figures_on && writer) {
         // Debian's python3 carries matplotlib from the system packages; prefer it over another on PATH.
         const std::string python = std::system("test -x /usr/bin/python3") == 0 ? "/usr/bin/python3" : "python3";
         const std::string script = shell_word(std::string(GIMLET_EXAMPLE_DIR) + "/plot.py");
@@ -501,7 +544,6 @@ int main(int argc, char** argv) try {
         std::ostringstream cell;  // as summary.csv has it: the maps' particle spacing is half of it
         gimlet::io::exact_numbers(cell);
         cell << s.cell * 1e3;
-        std::filesystem::create_directories(io.out);
         figures.emplace(python + " " + script + " --follow " + cell.str() + " " + shell_word(io.out.string()), log);
         io.figures = &*figures;
     }
@@ -524,7 +566,9 @@ int main(int argc, char** argv) try {
                     plot.c_str());
     std::printf("  series: %s\n", (io.out / "series.csv").string().c_str());
     return rc;
-} catch (const std::exception& e) {
-    std::cerr << "cavity_collapse: " << e.what() << '\n';
-    return 1;
+    } catch (const std::exception& e) {
+        // Every process stops alike (a bad flag on all, a failure agreed on all): one says why.
+        if (writer) std::cerr << "cavity_collapse: " << e.what() << '\n';
+        return 1;
+    }
 }

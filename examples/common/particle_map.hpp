@@ -5,6 +5,7 @@
 
 #include <gimlet/core/detail/omp.hpp>
 #include <gimlet/core/fields.hpp>
+#include <gimlet/core/processes.hpp>
 #include <gimlet/material/update.hpp>
 
 #include <algorithm>
@@ -29,13 +30,12 @@ namespace example {
 // written in block order: the bytes a stream through exact_numbers writes, particle by particle,
 // in a fraction of its time, and on every thread (a serial pass would leave the others idle).
 // The whole map is held as text until it is written: about 160 bytes a particle.
-// From `parallel_from` particles the rows are formatted on the solver's threads.
-template <class Solver>
-void write_particle_map(const std::filesystem::path& file, const Solver& sol, std::size_t parallel_from,
+// From `parallel_from` particles the rows are formatted on `threads` threads.
+template <class Store>
+void write_map_of(const std::filesystem::path& file, const Store& ps, int threads, std::size_t parallel_from,
                         double section_y = 0) {
-    const auto& ps = sol.particles();
+    constexpr int dim = Store::space_type::dim;
     const std::size_t n = ps.size();
-    const int threads = sol.threads();
     const std::size_t blocks = n >= parallel_from && threads > 1 ? std::size_t(threads) : 1;
     const std::size_t size = (n + blocks - 1) / blocks;
     std::vector<std::string> text(blocks);
@@ -56,11 +56,11 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
             // 2-D: every particle, (x, y) or (r, z). 3-D: the section y = section_y, the particles
             // within a spacing of it (the layer on each side of a plane between two layers, the
             // first layer beside a symmetry plane), in x and z, with F's (x, z) block.
-            constexpr int up = Solver::dim - 1;
+            constexpr int up = dim - 1;
             for (std::size_t i = first; i < last; ++i) {
                 const auto p = ps[i];
                 const auto& x = p.template get<gimlet::fields::position>();
-                if constexpr (Solver::dim == 3)
+                if constexpr (dim == 3)
                     if (!(std::abs(x[1] - section_y) < 2 * p.template get<gimlet::fields::domain_half_width>()[1])) continue;
                 put(double(x[0] * 1e3), ',');
                 put(double(x[up] * 1e3), ',');
@@ -83,6 +83,22 @@ void write_particle_map(const std::filesystem::path& file, const Solver& sol, st
     os << "x_mm,y_mm,pressure_MPa,temperature_K,body,F_xx,F_xy,F_yx,F_yy\n";
     for (const auto& t : text) os.write(t.data(), std::streamsize(t.size()));
     if (!os) throw std::runtime_error("could not write " + file.string());
+}
+
+// The map of a solver's particles, on the solver's threads. On many processes
+// (solver_options::processes) it is collective: the particles are gathered in ordinal order and
+// the first process writes the map one process writes (a failure to write stops every process).
+template <class Solver>
+void write_particle_map(const std::filesystem::path& file, const Solver& sol, std::size_t parallel_from,
+                        double section_y = 0) {
+    if (gimlet::processes* many = sol.processes()) {
+        const auto whole = sol.gathered_particles();
+        many->together([&] {
+            if (many->rank() == 0) write_map_of(file, whole, sol.threads(), parallel_from, section_y);
+        });
+        return;
+    }
+    write_map_of(file, sol.particles(), sol.threads(), parallel_from, section_y);
 }
 
 }  // namespace example

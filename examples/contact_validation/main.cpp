@@ -15,16 +15,24 @@
 // Writes OUTPUT/profile_<policy>.csv (y_mm, pressure_Pa; y from the bottom of the lower block),
 // OUTPUT/summary.csv (policy, interface_peak_over_plateau, ...) and, where python3 with
 // matplotlib is available, OUTPUT/profiles.png.
+// Built with MPI (gimlet::mpi, where the toolchain has it), it runs on many processes too,
+// `mpirun -np 2 contact_validation --threads 1`: the same files, bit for bit, written by the
+// first process.
 #include "common/cli.hpp"
 #include "common/hmx_flags.hpp"
+#include "common/processes.hpp"
 #include "contact_validation/contact_validation.hpp"
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
-int main(int argc, char** argv) try {
+int main(int argc, char** argv) {
+    const example::run_processes procs(argc, argv);
+    const bool writer = procs.writer();  // one process writes, prints and plots
+    try {
     example::cli args(argc, argv,
                       "usage: contact_validation [--velocity V_m_s] [--cell H_mm] [--time-us T] [--consistent-mass K] "
                       "[--viscosity-linear B1] [--viscosity-quadratic B2] [--cfl C] [--threads N] [--output DIR]");
@@ -38,7 +46,14 @@ int main(int argc, char** argv) try {
     s.viscosity_quadratic = mv.viscosity_quadratic;
     s.cfl = mv.cfl;
     s.threads = args.integer("threads", 0, 0, 256);
-    const auto out = args.directory("output", "results/contact_validation");
+    // The writer creates and probes the directory; the others only take the flag. Where it
+    // cannot, every process stops (together).
+    std::filesystem::path out;
+    const auto output = [&] {
+        out = writer ? args.directory("output", "results/contact_validation") : std::filesystem::path(args.path("output"));
+    };
+    procs.together(output);
+    s.processes = [&procs] { return procs.for_solver(); };
     args.finish();
 
     const std::vector<contact_validation::result> results{
@@ -46,6 +61,7 @@ int main(int argc, char** argv) try {
         contact_validation::run<gimlet::contact::bardenhagen>(s, "bardenhagen"),
         contact_validation::run<gimlet::contact::distance>(s, "distance"),
     };
+    if (!writer) return 0;
 
     std::ofstream summary(out / "summary.csv");
     gimlet::io::exact_numbers(summary);
@@ -86,7 +102,8 @@ int main(int argc, char** argv) try {
         std::printf("  (no plot: needs python3 with matplotlib; run %s)\n", plot.c_str());
     std::printf("  summary: %s\n", (out / "summary.csv").string().c_str());
     return 0;
-} catch (const std::exception& e) {
-    std::cerr << "contact_validation: " << e.what() << '\n';
-    return 1;
+    } catch (const std::exception& e) {
+        if (writer) std::cerr << "contact_validation: " << e.what() << '\n';
+        return 1;
+    }
 }

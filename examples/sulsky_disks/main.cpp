@@ -12,24 +12,17 @@
 //
 //   mpirun -np 2 sulsky_disks --cell 0.005
 #include "common/cli.hpp"
+#include "common/processes.hpp"
 
 #include <gimlet/gimlet.hpp>
-#if GIMLET_EXAMPLE_MPI
-#include <gimlet/mpi/slabs.hpp>
-#endif
 
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 
 int main(int argc, char** argv) {
-#if GIMLET_EXAMPLE_MPI
-    gimlet::mpi::environment mpi(argc, argv);
-    const gimlet::mpi::communicator comm;
-    const bool writer = comm.rank() == 0;  // one process writes and prints
-#else
-    const bool writer = true;
-#endif
+    const example::run_processes procs(argc, argv);
+    const bool writer = procs.writer();  // one process writes and prints
     try {
     example::cli args(argc, argv,
                       "usage: sulsky_disks [--cell H_m] [--end-time T_s] [--velocity V_m_s] [--threads N] [--output DIR]");
@@ -43,11 +36,7 @@ int main(int argc, char** argv) {
     const auto output = [&] {
         out = writer ? args.directory("output", "results/sulsky_disks") : std::filesystem::path(args.path("output"));
     };
-#if GIMLET_EXAMPLE_MPI
-    comm.together(output);
-#else
-    output();
-#endif
+    procs.together(output);
     args.finish();
 
     using S = gimlet::space<2>;
@@ -62,9 +51,7 @@ int main(int argc, char** argv) {
     scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-speed, -speed), 2, "upper disk");
     gimlet::solver_options<S> options;
     options.threads = threads;
-#if GIMLET_EXAMPLE_MPI
-    if (comm.size() > 1) options.processes = gimlet::mpi::make_ranks(comm);
-#endif
+    options.processes = procs.for_solver();
     gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(scene, options);
 
     std::ofstream csv;
@@ -80,10 +67,7 @@ int main(int argc, char** argv) {
             << last.kinetic << ',' << last.internal << ',' << last.total_energy() << '\n';
     });
     sol.run_until(end, observer);
-    std::size_t particles = sol.particles().size();
-#if GIMLET_EXAMPLE_MPI
-    particles = std::size_t(comm.sum(std::uint64_t(particles)));
-#endif
+    const auto particles = std::size_t(procs.sum(sol.particles().size()));
     if (!writer) return 0;
 
     std::printf("sulsky_disks: %zu particles, %llu steps to t = %.3f s\n", particles,

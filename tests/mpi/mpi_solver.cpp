@@ -394,8 +394,7 @@ TEST_CASE("solver on many ranks: what is not distributed yet is refused by name"
     gimlet::scene::scene<S, gimlet::elastic_material> flat(gs);
     flat.add_body(gimlet::scene::box<S>(S::vector(0.2, 0.0), S::vector(0.8, 0.05)),
                   gimlet::make_elastic_material(1000.0, 1000.0, 0.3), S::vector::Zero(), 2, "strip");
-    // One processes object for two solvers of other grids; particles added on one rank; the
-    // measurements that read one rank's particles.
+    // One processes object for two solvers of other grids; particles added on one rank.
     {
         elastic_solver first(scene, options);
         CHECK_THROWS_WITH(elastic_solver(two_disks(0.025), options), Catch::Contains("make_ranks() for each solver"));

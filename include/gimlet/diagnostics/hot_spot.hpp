@@ -3,7 +3,9 @@
 /// \file
 /// The hot spot: the hottest disc (sphere in 3-D) of a given radius. A single particle's
 /// temperature depends on the resolution and on particle noise; a mean over a fixed physical
-/// size converges as the cell shrinks, so resolution studies can compare it.
+/// size converges as the cell shrinks, so resolution studies can compare it. On many processes
+/// (solver_options::processes) both measurements are the whole run's, bitwise one process's,
+/// and collective: every process calls them.
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
@@ -11,6 +13,7 @@
 #include "gimlet/core/exact_sum.hpp"
 #include "gimlet/core/fields.hpp"
 #include "gimlet/core/material_point.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/diagnostics/conservation.hpp"
 
 #include <algorithm>
@@ -18,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <optional>
@@ -57,9 +61,59 @@ struct hot_spot_workspace {
     std::vector<double> block_max, sorted_m, sorted_T, block_mass, block_excess, block_rim;
     std::vector<std::uint8_t> hot_bin, keep_bin, try_bin;
     ///@}
+    ///@{
+    /// On many processes: the particles this process searches (its own and the others' near
+    /// them, in ordinal order), their ordinals, and which are its own.
+    std::vector<Vector> local_x;
+    std::vector<typename Vector::Scalar> local_m, local_T;
+    std::vector<std::uint64_t> local_ordinal;
+    std::vector<std::uint8_t> local_own;
+    ///@}
 };
 
 namespace detail {
+
+// The refusal of a radius too small for the bins, the same wherever it is found.
+inline void require_countable_bins(bool countable, double radius) {
+    require(countable, "hot-spot radius (m)", radius, "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
+}
+
+// What one of many processes searches (hot_spot_over_processes), read by hot_spot_search as it
+// reads a solver: this process's own particles and the others' near them, in ordinal order
+// (copied into the workspace's local_* arrays), and the whole run's box and box of the particles
+// hotter than `above`, which set the bins (so that they are one process's bins).
+template <class Solver>
+struct hot_spot_view {
+    static constexpr int dim = Solver::dim;
+    using vector = typename Solver::vector;
+    // The columns the search reads: position, mass and temperature.
+    struct store_type {
+        const hot_spot_workspace<vector>* work = nullptr;
+        template <class Field>
+        [[nodiscard]] const auto& column() const noexcept {
+            if constexpr (std::is_same_v<Field, fields::position>) return work->local_x;
+            else if constexpr (std::is_same_v<Field, fields::mass>) return work->local_m;
+            else {
+                static_assert(std::is_same_v<Field, fields::temperature>, "hot_spot reads positions, masses and temperatures");
+                return work->local_T;
+            }
+        }
+        [[nodiscard]] std::size_t size() const noexcept { return work->local_x.size(); }
+    };
+    // The solver's threads (detail::threads_of reads options().threads).
+    struct options_type {
+        int threads = 1;
+    };
+    store_type store;
+    options_type opt;
+    vector lo, hi, hot_lo, hot_hi;
+    [[nodiscard]] const store_type& particles() const noexcept { return store; }
+    [[nodiscard]] const options_type& options() const noexcept { return opt; }
+};
+template <class T>
+inline constexpr bool is_hot_spot_view = false;
+template <class Solver>
+inline constexpr bool is_hot_spot_view<hot_spot_view<Solver>> = true;
 
 /// One hot_spot call (see hot_spot below for what it finds). Its passes over the particles, in
 /// the order run() calls them:
@@ -73,7 +127,8 @@ namespace detail {
 ///    particle (bound_at).
 /// Each pass gives what the serial pass gives (a minimum, a maximum, a stable order), so
 /// nothing depends on the thread count. The members are shared by the threads of run()'s one
-/// region; a pass's own scratch is local to it.
+/// region; a pass's own scratch is local to it. On many processes it runs over a hot_spot_view:
+/// the bins are the whole run's, and only this process's own particles are centres.
 template <class Solver>
 class hot_spot_search {
 public:
@@ -98,7 +153,9 @@ public:
           blocks_(gimlet::detail::observer_blocks(n_, threads_)),
           team_(blocks_ > 1 ? threads_ : 1),
           extent_pass_(static_cast<std::ptrdiff_t>(blocks_), team_),
-          w_(work) {}
+          w_(work) {
+        if constexpr (many) view_ = &s;
+    }
 
     [[nodiscard]] hot_spot_result<vector> run() {
         hot_spot_result<vector> r;
@@ -138,12 +195,19 @@ public:
         return r;
     }
 
+    /// After run(): the index of the centre of the disc it named, if it named one.
+    [[nodiscard]] std::optional<std::size_t> centre_index() const {
+        return best_.found ? std::optional<std::size_t>(best_.index) : std::nullopt;
+    }
+
 private:
     using cell_index = std::array<std::size_t, std::size_t(dim)>;
     using store_type = typename Solver::store_type;
     template <class Field>
     using column_of = std::remove_cvref_t<decltype(std::declval<const store_type&>().template column<Field>())>;
     static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+    // A search of one of many processes (hot_spot_over_processes).
+    static constexpr bool many = is_hot_spot_view<Solver>;
 
     // The hottest disc so far, ties to the lowest index: a maximum in a total order, so it does
     // not depend on the thread count or on the order the centres are tried in.
@@ -211,6 +275,9 @@ private:
         for (const std::size_t h : w_.block_hottest)
             if (h != none && (hottest_ == none || T_[h] > T_[hottest_])) hottest_ = h;
         for (std::size_t b = 0; b < blocks_; ++b) lo_ = lo_.cwiseMin(w_.block_lo[b]), hi_ = hi_.cwiseMax(w_.block_hi[b]);
+        // On many processes the bins are the whole run's: the same bins, and so the same discs'
+        // sums and references, as one process's.
+        if constexpr (many) lo_ = view_->lo, hi_ = view_->hi;
         // Bins of side `radius`: a disc reaches only the 3^dim bins around its centre's bin. The
         // bins per axis, counted in double first: at most 2^40 in all, so that the count and the
         // arrays it sizes do not overflow.
@@ -232,8 +299,7 @@ private:
         // An exception must not leave the region (that would end the program): a radius too
         // small for the bins or an allocation that fails is kept and thrown after it.
         try {
-            require(countable, "hot-spot radius (m)", radius_,
-                    "> 0 and at least the particles' extent over 2^(40/dim): at most 2^40 bins");
+            require_countable_bins(countable, radius_);
             // No disc is hotter than its hottest particle (the means, exactly: disc): where the
             // hottest particle is no hotter than `above`, no disc is sought and nothing is
             // sorted (the result names none). A caller that tracks a running peak meets this in
@@ -244,6 +310,9 @@ private:
                 vector hot_lo = x_[hottest_], hot_hi = x_[hottest_];
                 for (std::size_t b = 0; b < blocks_; ++b)
                     if (w_.block_hot[b]) hot_lo = hot_lo.cwiseMin(w_.block_hot_lo[b]), hot_hi = hot_hi.cwiseMax(w_.block_hot_hi[b]);
+                // On many processes the whole run's box: the centres tried are then one
+                // process's, and so is the disc named where none is hotter than `above`.
+                if constexpr (many) hot_lo = view_->hot_lo, hot_hi = view_->hot_hi;
                 keep_bins(hot_lo, hot_hi);
             } else {
                 w_.block_mass.assign(blocks_, 0.0);
@@ -473,6 +542,10 @@ private:
         GIMLET_OMP(for schedule(dynamic, 256) nowait)
         for (std::ptrdiff_t k = 0; k < kept; ++k) {
             const std::size_t i = w_.sorted_index[std::size_t(k)];
+            // On many processes only a process's own particles are centres: another's disc may
+            // reach particles this process does not hold.
+            if constexpr (many)
+                if (!w_.local_own[i]) continue;
             bool tried = true;
             for (int d = 0; d < dim; ++d) tried = tried && w_.cell[i][d] >= try_lo_[d] && w_.cell[i][d] <= try_hi_[d];
             if (!tried || (refine && !w_.try_bin[w_.bin[i]])) continue;
@@ -595,7 +668,298 @@ private:
     // the floor first (refine_); an exception, thrown after the region.
     bool go_ = false, refine_ = false;
     std::exception_ptr failed_;
+    // On many processes, what this process searches (the whole run's boxes); nothing on one
+    // process (an empty member, last: the one-process search's members keep their places, whose
+    // layout measurably affects its speed).
+    struct no_view {};
+    [[no_unique_address]] std::conditional_t<many, const Solver*, no_view> view_{};
 };
+
+// The records hot_spot_over_processes passes between processes: each process's summary (to
+// every process), a particle another process needs (a ghost), and each process's hottest disc
+// (to every process). Plain numbers, copied byte for byte.
+template <int Dim, class Real>
+struct hot_spot_summary {
+    std::uint64_t count = 0;    // the process's own particles
+    std::uint64_t hottest = 0;  // the ordinal of its hottest particle (none: every temperature NaN)
+    std::array<Real, Dim> lo{}, hi{}, hottest_x{}, hot_lo{}, hot_hi{};  // boxes; the hottest's place
+    Real hottest_T = 0;
+    std::uint8_t hot = 0;  // whether a particle is hotter than `above` (hot_lo, hot_hi their box)
+};
+template <int Dim, class Real>
+struct hot_spot_ghost {
+    std::uint64_t ordinal = 0;
+    std::array<Real, Dim> x{};
+    Real m = 0, T = 0;
+};
+template <int Dim, class Real>
+struct hot_spot_disc {
+    std::uint64_t ordinal = 0;  // of its centre (none: the process named no disc)
+    std::uint64_t count = 0;
+    double mean = 0;
+    std::array<Real, Dim> centre{};
+};
+
+// Records to bytes and back (trivially copyable records, whole).
+template <class Record>
+void append_record(std::vector<std::byte>& out, const Record& r) {
+    static_assert(std::is_trivially_copyable_v<Record>, "records are copied byte for byte");
+    const std::size_t at = out.size();
+    out.resize(at + sizeof(Record));
+    std::memcpy(out.data() + at, &r, sizeof(Record));
+}
+template <class Record>
+[[nodiscard]] std::vector<Record> records_in(const std::vector<std::byte>& in) {
+    static_assert(std::is_trivially_copyable_v<Record>, "records are copied byte for byte");
+    std::vector<Record> out(in.size() / sizeof(Record));
+    if (!out.empty()) std::memcpy(out.data(), in.data(), out.size() * sizeof(Record));
+    return out;
+}
+template <class Vector, class Real, std::size_t Dim>
+[[nodiscard]] Vector vector_of(const std::array<Real, Dim>& a) {
+    Vector v;
+    for (std::size_t d = 0; d < Dim; ++d) v[Eigen::Index(d)] = a[d];
+    return v;
+}
+template <class Vector>
+[[nodiscard]] auto array_of(const Vector& v) {
+    std::array<typename Vector::Scalar, std::size_t(Vector::RowsAtCompileTime)> a{};
+    for (std::size_t d = 0; d < a.size(); ++d) a[d] = v[Eigen::Index(d)];
+    return a;
+}
+
+// hot_spot on a solver split between processes (solver_options::processes): one process's
+// result, bit for bit, on every process. Collective.
+//  1. Every process's box, hottest particle (the largest temperature, NaN never taken, ties to
+//     the lowest ordinal: one process's "first") and box of the particles hotter than `above` go
+//     to every process. The whole run's box sets the bins, as one process sets them from its
+//     particles' box (minima and maxima are exact in any order); the answers before any search
+//     (no particle, every temperature NaN, none hotter than `above`) and the refusal of a radius
+//     too small for the bins are then one process's, on every process alike.
+//  2. Ghosts: each process sends every other one its particles in the bins within one of that
+//     process's box's bins (the 3^dim bins around each of its centres: each of its discs and
+//     their reference T_b are then whole), and to all its particles in the bins within one of
+//     the hottest particle's (every process then sums the hottest particle's disc, the search's
+//     floor, as one process sums it). Bins are integer indices computed from the same numbers
+//     (hot_spot_search::bin_of) on every process, so every process draws the same lines.
+//  3. Each process runs one process's search over its own particles and the ghosts in ordinal
+//     order (so that each bin's particles are summed in one process's order, and "ties to the
+//     lowest index" is the lowest ordinal), with the whole run's bins and only its own particles
+//     as centres. It tries one process's centres among its own: the same floor and bins' maxima
+//     and, with `above`, the same box; without `above` its map of hot bins is drawn from the
+//     particles it holds at a floor of its own, which keeps every centre whose bins reach the
+//     search's floor (a lower bound on the hottest particle's disc is all the map needs).
+//  4. The hottest disc of all: the largest mean, ties to the lowest ordinal (a maximum in a total
+//     order, as best_disc's), its centre and count sent to every process.
+template <class Solver>
+[[nodiscard]] hot_spot_result<typename Solver::vector> hot_spot_over_processes(const Solver& s, gimlet::processes& procs,
+                                                                               double radius, double above,
+                                                                               hot_spot_workspace<typename Solver::vector>& work) {
+    constexpr int dim = Solver::dim;
+    using vector = typename Solver::vector;
+    using real = typename vector::Scalar;
+    using summary = hot_spot_summary<dim, real>;
+    using ghost = hot_spot_ghost<dim, real>;
+    using disc = hot_spot_disc<dim, real>;
+    using cell_index = std::array<std::size_t, std::size_t(dim)>;
+    constexpr std::uint64_t none = std::numeric_limits<std::uint64_t>::max();
+    const auto& store = s.particles();
+    const auto& x = store.template column<fields::position>();
+    const auto& m = store.template column<fields::mass>();
+    const auto& T = store.template column<fields::temperature>();
+    static_assert(std::is_same_v<std::remove_cvref_t<decltype(m[0])>, real> &&
+                      std::is_same_v<std::remove_cvref_t<decltype(T[0])>, real>,
+                  "hot_spot: masses and temperatures of the positions' scalar type");
+    const std::size_t n = store.size(), ranks = std::size_t(procs.size()), me = std::size_t(procs.rank());
+    const bool tracked = above > -std::numeric_limits<double>::infinity() && above < std::numeric_limits<double>::infinity();
+    const double wanted = tracked ? above : -std::numeric_limits<double>::infinity();  // as hot_spot_search's
+
+    // 1. This process's summary, from blocks of consecutive particles on the solver's threads,
+    // merged in block order (the hottest: the first of the largest, by ordinal).
+    const int threads = gimlet::detail::threads_of(s);
+    const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
+    struct block_summary {
+        vector lo, hi, hot_lo, hot_hi;
+        std::size_t hottest = std::numeric_limits<std::size_t>::max();
+        bool any = false, hot = false;
+    };
+    std::vector<block_summary> part(blocks);
+    gimlet::detail::for_each_block(n, blocks, true, threads, [&](std::size_t b, std::size_t first, std::size_t last) {
+        if (first == last) return;
+        block_summary u{x[first], x[first], x[first], x[first], std::size_t(none), true, false};
+        for (std::size_t i = first; i < last; ++i) {
+            u.lo = u.lo.cwiseMin(x[i]), u.hi = u.hi.cwiseMax(x[i]);
+            if (!std::isnan(double(T[i])) && (u.hottest == none || T[i] > T[u.hottest])) u.hottest = i;
+            if (tracked && double(T[i]) > wanted) {
+                u.hot_lo = u.hot ? vector(u.hot_lo.cwiseMin(x[i])) : x[i];
+                u.hot_hi = u.hot ? vector(u.hot_hi.cwiseMax(x[i])) : x[i];
+                u.hot = true;
+            }
+        }
+        part[b] = u;
+    });
+    summary mine{};
+    mine.count = n;
+    mine.hottest = none;
+    {
+        std::size_t h = none;
+        vector lo = n ? x[0] : vector(vector::Zero()), hi = lo, hot_lo = lo, hot_hi = lo;
+        bool hot = false;
+        for (const auto& u : part) {
+            if (!u.any) continue;
+            lo = lo.cwiseMin(u.lo), hi = hi.cwiseMax(u.hi);
+            if (u.hottest != none && (h == none || T[u.hottest] > T[h])) h = u.hottest;
+            if (u.hot) {
+                hot_lo = hot ? vector(hot_lo.cwiseMin(u.hot_lo)) : u.hot_lo;
+                hot_hi = hot ? vector(hot_hi.cwiseMax(u.hot_hi)) : u.hot_hi;
+                hot = true;
+            }
+        }
+        mine.lo = array_of(lo), mine.hi = array_of(hi), mine.hot_lo = array_of(hot_lo), mine.hot_hi = array_of(hot_hi);
+        mine.hot = hot;
+        if (h != none) mine.hottest = s.ordinal(h), mine.hottest_T = T[h], mine.hottest_x = array_of(x[h]);
+    }
+    std::vector<std::vector<std::byte>> out(ranks);
+    append_record(out[0], mine);
+    for (std::size_t q = 1; q < ranks; ++q) out[q] = out[0];
+    std::vector<summary> all(ranks);
+    {
+        const auto in = procs.all_to_all(out);
+        for (std::size_t q = 0; q < ranks; ++q) all[q] = records_in<summary>(in[q]).at(0);
+    }
+    std::uint64_t total = 0;
+    vector lo = vector::Zero(), hi = vector::Zero(), hot_lo = vector::Zero(), hot_hi = vector::Zero(), hottest_x = vector::Zero();
+    std::uint64_t hottest = none;
+    real hottest_T = 0;
+    bool hot = false;
+    for (const summary& u : all) {
+        if (u.count == 0) continue;
+        const vector u_lo = vector_of<vector>(u.lo), u_hi = vector_of<vector>(u.hi);
+        lo = total ? vector(lo.cwiseMin(u_lo)) : u_lo;
+        hi = total ? vector(hi.cwiseMax(u_hi)) : u_hi;
+        total += u.count;
+        if (u.hottest != none && (hottest == none || u.hottest_T > hottest_T || (u.hottest_T == hottest_T && u.hottest < hottest)))
+            hottest = u.hottest, hottest_T = u.hottest_T, hottest_x = vector_of<vector>(u.hottest_x);
+        if (u.hot) {
+            const vector u_hot_lo = vector_of<vector>(u.hot_lo), u_hot_hi = vector_of<vector>(u.hot_hi);
+            hot_lo = hot ? vector(hot_lo.cwiseMin(u_hot_lo)) : u_hot_lo;
+            hot_hi = hot ? vector(hot_hi.cwiseMax(u_hot_hi)) : u_hot_hi;
+            hot = true;
+        }
+    }
+    hot_spot_result<vector> r;
+    r.centre = vector::Zero();
+    if (total == 0 || hottest == none) return r;  // no particle, or every temperature NaN: none
+    // The bins, counted as hot_spot_search::choose_bins counts them.
+    cell_index bins{};
+    {
+        std::array<double, dim> per_axis{};
+        double cells = 1;
+        for (int d = 0; d < dim; ++d) cells *= per_axis[d] = std::floor(double(hi[d] - lo[d]) / radius) + 1;
+        require_countable_bins(cells <= 0x1p40, radius);
+        for (int d = 0; d < dim; ++d) bins[std::size_t(d)] = std::size_t(per_axis[d]);
+    }
+    r.max_temperature = double(hottest_T);
+    if (!(double(hottest_T) > wanted)) return r;  // no disc is sought (hot_spot_search::choose_bins)
+
+    // 2. The ghosts: the bins within one of each other process's box's, and of the hottest
+    // particle's (hot_spot_search::bin_of: the same integers on every process).
+    auto bin_of = [&](const vector& p, int d) { return std::size_t(double(p[d] - lo[d]) / radius); };
+    auto around = [&](const vector& a, const vector& z, cell_index& from, cell_index& to) {
+        for (int d = 0; d < dim; ++d) {
+            const std::size_t first = bin_of(a, d), last = bin_of(z, d);
+            from[std::size_t(d)] = first > 0 ? first - 1 : 0;
+            to[std::size_t(d)] = std::min(last + 1, bins[std::size_t(d)] - 1);
+        }
+    };
+    std::vector<cell_index> from(ranks), to(ranks);
+    for (std::size_t q = 0; q < ranks; ++q)
+        if (all[q].count) around(vector_of<vector>(all[q].lo), vector_of<vector>(all[q].hi), from[q], to[q]);
+    cell_index hot_from{}, hot_to{};
+    around(hottest_x, hottest_x, hot_from, hot_to);
+    for (auto& o : out) o.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+        cell_index at{};
+        for (int d = 0; d < dim; ++d) at[std::size_t(d)] = bin_of(x[i], d);
+        auto within = [&](const cell_index& a, const cell_index& z) {
+            bool in = true;
+            for (std::size_t d = 0; d < std::size_t(dim); ++d) in = in && at[d] >= a[d] && at[d] <= z[d];
+            return in;
+        };
+        const bool near_hottest = within(hot_from, hot_to);
+        for (std::size_t q = 0; q < ranks; ++q)
+            if (q != me && all[q].count && (near_hottest || within(from[q], to[q])))
+                append_record(out[q], ghost{s.ordinal(i), array_of(x[i]), m[i], T[i]});
+    }
+    // This process's particles and the ghosts, in ordinal order, into the workspace.
+    {
+        const auto in = procs.all_to_all(out);
+        std::vector<std::vector<ghost>> ghosts(ranks);
+        std::size_t count = n;
+        for (std::size_t q = 0; q < ranks; ++q)
+            if (q != me) ghosts[q] = records_in<ghost>(in[q]), count += ghosts[q].size();
+        struct source {
+            std::uint64_t ordinal;
+            std::size_t rank, at;  // rank me: this process's particle `at`; else ghosts[rank][at]
+        };
+        std::vector<source> order;
+        order.reserve(count);
+        for (std::size_t i = 0; i < n; ++i) order.push_back({s.ordinal(i), me, i});
+        for (std::size_t q = 0; q < ranks; ++q)
+            for (std::size_t k = 0; k < ghosts[q].size(); ++k) order.push_back({ghosts[q][k].ordinal, q, k});
+        std::sort(order.begin(), order.end(), [](const source& a, const source& b) { return a.ordinal < b.ordinal; });
+        work.local_x.resize(count);
+        work.local_m.resize(count);
+        work.local_T.resize(count);
+        work.local_ordinal.resize(count);
+        work.local_own.resize(count);
+        for (std::size_t k = 0; k < count; ++k) {
+            const source& o = order[k];
+            work.local_ordinal[k] = o.ordinal;
+            work.local_own[k] = o.rank == me;
+            if (o.rank == me) {
+                work.local_x[k] = x[o.at], work.local_m[k] = m[o.at], work.local_T[k] = T[o.at];
+            } else {
+                const ghost& g = ghosts[o.rank][o.at];
+                work.local_x[k] = vector_of<vector>(g.x), work.local_m[k] = g.m, work.local_T[k] = g.T;
+            }
+        }
+    }
+
+    // 3. The search over them, this process's own particles the centres (none where it has none).
+    disc best{};
+    best.ordinal = none;
+    procs.together([&] {
+        if (n == 0) return;
+        hot_spot_view<Solver> view;
+        view.store.work = &work;
+        view.opt.threads = threads;
+        view.lo = lo, view.hi = hi;
+        view.hot_lo = hot ? hot_lo : hottest_x, view.hot_hi = hot ? hot_hi : hottest_x;
+        hot_spot_search<hot_spot_view<Solver>> search(view, radius, above, work);
+        const auto found = search.run();
+        if (const auto c = search.centre_index())
+            best = {work.local_ordinal[*c], std::uint64_t(found.particles), found.temperature, array_of(found.centre)};
+    });
+
+    // 4. The hottest of the processes' discs: the largest mean, ties to the lowest ordinal.
+    for (auto& o : out) o.clear();
+    append_record(out[0], best);
+    for (std::size_t q = 1; q < ranks; ++q) out[q] = out[0];
+    const auto in = procs.all_to_all(out);
+    best.ordinal = none;
+    for (std::size_t q = 0; q < ranks; ++q) {
+        const disc c = records_in<disc>(in[q]).at(0);
+        if (c.ordinal != none && (best.ordinal == none || c.mean > best.mean || (c.mean == best.mean && c.ordinal < best.ordinal)))
+            best = c;
+    }
+    if (best.ordinal != none) {
+        r.temperature = best.mean;
+        r.centre = vector_of<vector>(best.centre);
+        r.particles = std::size_t(best.count);
+    }
+    return r;
+}
 
 }  // namespace detail
 
@@ -625,14 +989,24 @@ private:
 /// temperature is NaN; there is then no disc). With no particles there is neither: temperature
 /// -infinity, max_temperature NaN, no particles, as where every temperature is NaN.
 ///
+/// On many processes (solver_options::processes) it is collective (every process calls it, with
+/// the same radius and `above`) and every process gets the whole run's result, bit for bit what
+/// one process gives for the same particles: "index" above is then the particle's ordinal
+/// (solver::ordinal), and the bins are the whole run's. Each process sends the others its
+/// particles within about two radii of their own (and all of them those near the hottest
+/// particle), so a radius wider than a process's slab costs more of the exchange, not another
+/// answer.
+///
 /// `work` is scratch reused between calls (hot_spot_workspace of the solver's vector type);
 /// the overload without it makes its own.
 template <class Solver>
-[[nodiscard]] auto hot_spot(const Solver& s, double radius, double above, hot_spot_workspace<typename Solver::vector>& work) {
+[[nodiscard]] hot_spot_result<typename Solver::vector> hot_spot(const Solver& s, double radius, double above,
+                                                                hot_spot_workspace<typename Solver::vector>& work) {
     static_assert(Solver::store_type::template has<fields::temperature>,
                   "hot_spot needs particle temperatures: use a thermal policy that is on");
     require_positive("hot-spot radius (m)", radius);
-    gimlet::detail::require_one_process(s, "diagnostics::hot_spot");
+    if constexpr (requires { s.processes(); })
+        if (gimlet::processes* p = s.processes()) return detail::hot_spot_over_processes(s, *p, radius, above, work);
     return detail::hot_spot_search<Solver>(s, radius, above, work).run();
 }
 
@@ -657,7 +1031,9 @@ struct hot_material_result {
     ///@}
 };
 /// Computes hot_material_result for each of `temperatures` (K), on the solver's threads from
-/// 4096 particles. Needs the temperature field (a thermal policy that is on).
+/// 4096 particles. Needs the temperature field (a thermal policy that is on). On many processes
+/// (solver_options::processes) the sums are the whole run's, the same bits as one process's
+/// (each process's exact sums completed over every process), and the call is collective.
 template <class Solver>
 [[nodiscard]] hot_material_result hot_material(const Solver& s, const std::vector<double>& temperatures) {
     static_assert(Solver::store_type::template has<fields::temperature>,

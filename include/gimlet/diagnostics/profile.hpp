@@ -5,16 +5,20 @@
 /// a front position.
 
 #include "gimlet/core/fields.hpp"
+#include "gimlet/core/processes.hpp"
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <utility>
 #include <vector>
 
 namespace gimlet::diagnostics {
 
 /// (coordinate along `axis`, value) for every particle accepted by `keep(p)`, sorted by
-/// coordinate. `value(p)` and `keep(p)` take a particle handle.
+/// coordinate, then value. `value(p)` and `keep(p)` take a particle handle. On many processes
+/// (solver_options::processes) it is collective: every process gets every process's points,
+/// the same list as one process (the order sorts equal pairs alike).
 template <class Solver, class Value, class Keep>
 [[nodiscard]] std::vector<std::pair<double, double>> profile(const Solver& s, int axis, Value value, Keep keep) {
     std::vector<std::pair<double, double>> out;
@@ -22,6 +26,22 @@ template <class Solver, class Value, class Keep>
     for (std::size_t i = 0; i < store.size(); ++i) {
         const auto p = store[i];
         if (keep(p)) out.emplace_back(double(p.template get<fields::position>()[axis]), double(value(p)));
+    }
+    if (gimlet::processes* many = gimlet::detail::processes_of(s)) {
+        std::vector<std::byte> mine(out.size() * 2 * sizeof(double));
+        for (std::size_t k = 0; k < out.size(); ++k) {
+            std::memcpy(mine.data() + 2 * k * sizeof(double), &out[k].first, sizeof(double));
+            std::memcpy(mine.data() + (2 * k + 1) * sizeof(double), &out[k].second, sizeof(double));
+        }
+        const auto in = many->all_to_all(std::vector<std::vector<std::byte>>(std::size_t(many->size()), mine));
+        out.clear();
+        for (const auto& from : in)
+            for (std::size_t at = 0; at + 2 * sizeof(double) <= from.size(); at += 2 * sizeof(double)) {
+                std::pair<double, double> point;
+                std::memcpy(&point.first, from.data() + at, sizeof(double));
+                std::memcpy(&point.second, from.data() + at + sizeof(double), sizeof(double));
+                out.push_back(point);
+            }
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -15,6 +15,11 @@
 /// domain's (fields::domain_half_width), and a line along r is the diameter through the axis,
 /// which each ring in the strip crosses at r and at -r (a void around the axis then has walls at
 /// -r_w and r_w: its chord is the diameter 2 r_w).
+///
+/// On many processes (solver_options::processes) every measurement here is the whole run's, bit
+/// for bit one process's, on every process: each process's strip points go to every process,
+/// joined in the particles' ordinal order (solver::ordinal), the order one process gathers them
+/// in. Each is then collective: every process calls it, with the same lines.
 
 #include "gimlet/core/detail/blocks.hpp"
 #include "gimlet/core/detail/omp.hpp"
@@ -27,6 +32,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -63,15 +69,72 @@ struct strip_line {
     double half_width;
 };
 
+// On many processes: every process's points of each line, on every process, in the ordinal
+// order of their particles (a ring's two points in the order it gives them): the sequence one
+// process gathers. `mine[j]` is this process's points of line j, in its particles' order, and
+// `ordinals[j]` their particles' ordinals. Collective.
+inline std::vector<std::vector<strip_point>> strips_of_every_process(gimlet::processes& procs,
+                                                                     const std::vector<std::vector<strip_point>>& mine,
+                                                                     const std::vector<std::vector<std::uint64_t>>& ordinals) {
+    struct record {
+        std::uint64_t ordinal;
+        strip_point point;
+    };
+    static_assert(std::is_trivially_copyable_v<record>, "points are copied byte for byte");
+    // Per line: the number of points, then each point with its particle's ordinal.
+    std::vector<std::byte> bytes;
+    auto append = [&](const void* from, std::size_t size) {
+        const std::size_t at = bytes.size();
+        bytes.resize(at + size);
+        std::memcpy(bytes.data() + at, from, size);
+    };
+    for (std::size_t j = 0; j < mine.size(); ++j) {
+        const std::uint64_t count = mine[j].size();
+        append(&count, sizeof count);
+        for (std::size_t k = 0; k < mine[j].size(); ++k) {
+            const record r{ordinals[j][k], mine[j][k]};
+            append(&r, sizeof r);
+        }
+    }
+    const auto in = procs.all_to_all(std::vector<std::vector<std::byte>>(std::size_t(procs.size()), bytes));
+    std::vector<std::vector<record>> every(mine.size());
+    for (const auto& from : in) {
+        std::size_t at = 0;
+        for (auto& line : every) {
+            std::uint64_t count = 0;
+            std::memcpy(&count, from.data() + at, sizeof count);
+            at += sizeof count;
+            for (std::uint64_t k = 0; k < count; ++k, at += sizeof(record)) {
+                record r;
+                std::memcpy(&r, from.data() + at, sizeof r);
+                line.push_back(r);
+            }
+        }
+    }
+    std::vector<std::vector<strip_point>> out(mine.size());
+    for (std::size_t j = 0; j < every.size(); ++j) {
+        // Stable: a ring's two points share an ordinal and keep their order.
+        std::stable_sort(every[j].begin(), every[j].end(), [](const record& a, const record& b) { return a.ordinal < b.ordinal; });
+        out[j].reserve(every[j].size());
+        for (const record& r : every[j]) out[j].push_back(r.point);
+    }
+    return out;
+}
+
 // The strips around several lines, in one pass over the particles: strips(s, lines)[j] holds
 // the particles of the strip around lines[j], sorted by coordinate along its line. From 4096
 // particles the strips are gathered on the solver's threads, a block of consecutive particles
 // each, and each line's points joined in block order: the sequence the serial pass gathers, so
-// the sort returns the same, and a line's strip is the same whatever other lines are asked.
+// the sort returns the same, and a line's strip is the same whatever other lines are asked. On
+// many processes the points of every process are joined in ordinal order first
+// (strips_of_every_process): the sequence one process gathers, and so one process's strips,
+// on every process (std::sort orders equal coordinates by where they start, so the sequence
+// must be one process's exactly). Collective there.
 template <class Solver>
 std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<strip_line<typename Solver::vector>>& lines) {
-    gimlet::detail::require_one_process(s, "diagnostics::strips");
     for (const auto& line : lines) check_line<Solver>(line.axis, line.half_width);
+    gimlet::processes* procs = nullptr;
+    if constexpr (requires { s.processes(); }) procs = s.processes();
     const auto& store = s.particles();
     const auto& x = store.template column<fields::position>();
     const auto& v = store.template column<fields::velocity>();
@@ -81,6 +144,8 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
     const int threads = gimlet::detail::threads_of(s);
     const std::size_t blocks = gimlet::detail::observer_blocks(n, threads);
     std::vector<std::vector<strip_point>> found(blocks * m);  // block k's points of line j at k * m + j
+    // On many processes, the particle of each point found (none are kept on one process).
+    std::vector<std::vector<std::size_t>> found_at(procs ? blocks * m : 0);
     // Per body that a line names, the box outside which none of its lines' strips reaches (a
     // dimension along which one of its lines runs is open), so that most particles are passed
     // over with a test or two, whatever the number of lines. The box is widened by a second
@@ -146,9 +211,11 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
                     const double half = double(store.template column<fields::domain_half_width>()[i][line.axis]);
                     found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
                     if (line.axis == 0) found[k * m + j].push_back({-double(x[i][0]), half, -double(v[i][0])});
+                    if (procs) found_at[k * m + j].insert(found_at[k * m + j].end(), std::size_t(line.axis == 0 ? 2 : 1), i);
                 } else {
                     const double half = 0.5 * std::pow(double(v0[i]), 1.0 / Solver::dim);
                     found[k * m + j].push_back({double(x[i][line.axis]), half, double(v[i][line.axis])});
+                    if (procs) found_at[k * m + j].push_back(i);
                 }
             }
         }
@@ -157,8 +224,16 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
     for (std::size_t j = 0; j < m; ++j) {
         out[j] = std::move(found[j]);
         for (std::size_t k = 1; k < blocks; ++k) out[j].insert(out[j].end(), found[k * m + j].begin(), found[k * m + j].end());
-        std::sort(out[j].begin(), out[j].end());
     }
+    if constexpr (requires { s.processes(); })
+        if (procs) {
+            std::vector<std::vector<std::uint64_t>> ordinals(m);
+            for (std::size_t j = 0; j < m; ++j)
+                for (std::size_t k = 0; k < blocks; ++k)
+                    for (const std::size_t i : found_at[k * m + j]) ordinals[j].push_back(s.ordinal(i));
+            out = strips_of_every_process(*procs, out, ordinals);
+        }
+    for (auto& points : out) std::sort(points.begin(), points.end());
     return out;
 }
 
@@ -167,7 +242,6 @@ std::vector<std::vector<strip_point>> strips(const Solver& s, const std::vector<
 template <class Solver>
 std::vector<strip_point> strip(const Solver& s, std::uint32_t body, int axis, const typename Solver::vector& point,
                                double strip_half_width) {
-    gimlet::detail::require_one_process(s, "diagnostics::strip");
     return std::move(strips(s, {{body, axis, point, strip_half_width}})[0]);
 }
 
@@ -198,7 +272,6 @@ struct surface_gap_result {
 template <class Solver>
 [[nodiscard]] surface_gap_result surface_gap(const Solver& s, std::uint32_t lower, std::uint32_t upper, int axis,
                                              const typename Solver::vector& point, double strip_half_width) {
-    gimlet::detail::require_one_process(s, "diagnostics::surface_gap");
     const auto both = detail::strips(s, {{lower, axis, point, strip_half_width}, {upper, axis, point, strip_half_width}});
     const auto& lo = both[0];
     const auto& hi = both[1];
@@ -264,7 +337,6 @@ template <class Solver>
 [[nodiscard]] void_chord_result void_chord(const Solver& s, std::uint32_t body, int axis,
                                            const typename Solver::vector& point, double strip_half_width,
                                            double min_width) {
-    gimlet::detail::require_one_process(s, "diagnostics::void_chord");
     require_positive("void threshold width (m)", min_width);
     return detail::chord(detail::strip(s, body, axis, point, strip_half_width), double(point[axis]), min_width);
 }
@@ -288,7 +360,6 @@ template <class Solver>
 [[nodiscard]] std::vector<void_chord_result> void_chords(const Solver& s,
                                                          const std::vector<chord_line<typename Solver::vector>>& lines,
                                                          double strip_half_width, double min_width) {
-    gimlet::detail::require_one_process(s, "diagnostics::void_chords");
     require_positive("void threshold width (m)", min_width);
     require_positive("strip half-width (m)", strip_half_width);
     if (lines.empty()) return {};
