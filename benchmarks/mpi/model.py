@@ -17,7 +17,11 @@ Assumptions (each a flag): double precision; uGIMP (slab rows 2); the flagship's
 2 sides for self-contact = 4 blocks), MUSL with the consistent mass (k = 4 iterations) and the
 distance contact, so the bands carry per entry: P2G mass + momentum + force (8 + 24 + 24 bytes),
 the mass gradients (24), k products M a (24 each) and MUSL's re-mapped momentum (24); all of a
-band's entries are sent, empty or not. A particle-update takes T_U seconds on one core (measured:
+band's entries are sent, empty or not; self-contact merges per band entry of each body its reference
+direction (40 bytes), fronts (16) and gaps (1). The flagship measures the hot spot every step: each
+process receives from each neighbour the particles within one bin (the hot-spot radius R) of its
+box, on average 1.5 R of the neighbour's particles along the last axis, 48 bytes each (ordinal,
+position, mass, temperature). A particle-update takes T_U seconds on one core (measured:
 0.78 us for the 3-D array at 2 mm on this machine, setup included); the node passes cost T_E a
 grid entry and step. A process has C cores at an efficiency (EFF) of one core each.
 """
@@ -44,6 +48,9 @@ def main():
     a.add_argument("--particle-bytes", type=float, default=250, help="bytes a particle's fields (3-D HMX)")
     a.add_argument("--stencil-bytes", type=float, default=27 * 4 * 8 + 117, help="bytes a particle's weights and entry list (3-D)")
     a.add_argument("--entry-bytes", type=float, default=8 * 13 + 8 * 3 * 4, help="bytes a grid entry's arrays")
+    a.add_argument("--hot-spot-radius", type=float, default=0.75, help="mm, the hot spot's radius (0: no hot spot)")
+    a.add_argument("--ghost-bytes", type=float, default=48, help="bytes a hot-spot ghost particle")
+    a.add_argument("--bodies", type=int, default=2)
     a.add_argument("--windowed", action="store_true",
                    help="node passes over each process's own rows (not yet: every process sweeps the whole grid)")
     o = a.parse_args()
@@ -57,29 +64,33 @@ def main():
     entries = o.fields * per_row * rows
     entry_bytes = 56 + 24 + 24 * o.k + 24
     folds = 3 + o.k  # P2G, gradients, k products, re-map
-    band_bytes = o.fields * o.slab_rows * per_row * entry_bytes
+    band_bytes = o.fields * o.slab_rows * per_row * entry_bytes + o.bodies * o.slab_rows * per_row * (40 + 16 + 1)
+    ghosts = 1.5 * o.hot_spot_radius * o.lateral**2 * 8 / o.cell**3  # a neighbour's particles within a bin
+    ghost_bytes = ghosts * o.ghost_bytes
     print(f"cell {o.cell} mm: {particles / 1e6:.1f} M particles, {per_row:,} nodes a row, {rows} rows, {slabs} slabs, "
           f"{entries / 1e6:.1f} M grid entries")
     print(f"a band: {o.slab_rows * per_row:,} nodes, {band_bytes / 1e6:.1f} MB a step each way "
-          f"({folds} passes, {entry_bytes} bytes an entry); an inner process has two bands")
+          f"({folds} passes, {entry_bytes} bytes an entry, and self-contact's merges); an inner process has two bands")
+    print(f"the hot spot's ghosts: {ghosts / 1e6:.2f} M particles, {ghost_bytes / 1e6:.1f} MB a step from each neighbour")
     rate = o.cores * o.eff
     compute_1 = particles * o.t_u / rate
     print(f"one process of {o.cores} cores: {compute_1:.2f} s a step of particle work, "
           f"{entries * o.t_e / rate:.3f} s of node passes")
     print()
-    print("| processes | slabs each | particle work (s) | node passes (s) | bands (s) | collectives (s) | step (s) | "
-          "speed-up | efficiency |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| processes | slabs each | particle work (s) | node passes (s) | bands (s) | hot-spot ghosts (s) | "
+          "collectives (s) | step (s) | speed-up | efficiency |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     base = None
     counts = sorted({1 << k for k in range(12) if (1 << k) <= slabs} | {slabs})
     for r in counts:
         work = compute_1 / r
         nodes = entries * o.t_e / rate / (r if o.windowed else 1)
         bands = 0.0 if r == 1 else 2 * band_bytes / o.bandwidth + 2 * 2 * folds * o.latency
+        ghost = 0.0 if r == 1 else 2 * ghost_bytes / o.bandwidth + 3 * o.latency * r  # three all-to-alls
         coll = 0.0 if r == 1 else o.allreduces * math.ceil(math.log2(r)) * o.latency
-        step = work + nodes + bands + coll
+        step = work + nodes + bands + ghost + coll
         base = base or step
-        print(f"| {r} | {slabs / r:.1f} | {work:.3f} | {nodes:.3f} | {bands:.4f} | {coll:.5f} | {step:.3f} | "
+        print(f"| {r} | {slabs / r:.1f} | {work:.3f} | {nodes:.3f} | {bands:.4f} | {ghost:.4f} | {coll:.5f} | {step:.3f} | "
               f"{base / step:.1f} | {base / step / r:.2f} |")
     print()
     store, stencil, grid_entry = o.particle_bytes, o.stencil_bytes, o.entry_bytes

@@ -184,12 +184,13 @@ struct output_state {
 };
 
 // A restart: the particles from the checkpoint, whose flags must be this run's; where each
-// output stood, the monitor and the summary so far; the series and the snapshots' list cut
-// back to the checkpoint's rows (the interrupted run may have written more after it).
+// output stood, the monitor and the summary so far. (The writer cuts the series and the
+// snapshots' list back to the checkpoint's rows when it opens them: the interrupted run may have
+// written more after it.)
 template <class Solver>
 output_state resume_from(const std::filesystem::path& checkpoint, const settings& s, Solver& sol,
                          monitor_of<typename Solver::vector>& mon,
-                         summary& sum, const std::filesystem::path& out, bool writer) {
+                         summary& sum) {
     auto v = gimlet::io::load_checkpoint(checkpoint, sol);
     // A checkpoint without these keys ran with the lumped mass, viscosity (0.06, 1.2), no volume
     // filter and the Courant number 0.4.
@@ -220,10 +221,6 @@ output_state resume_from(const std::filesystem::path& checkpoint, const settings
     sum.visit([&](const std::string& k, auto& x) {
         x = static_cast<std::remove_reference_t<decltype(x)>>(value_of(v, "summary." + k, checkpoint));
     });
-    if (writer) {
-        keep_lines(out / "series.csv", at.rows + 1);
-        keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
-    }
     return at;
 }
 
@@ -372,7 +369,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         return v;
     };
 
-    if (!io.restart.empty()) at = resume_from(io.restart, s, sol, mon, sum, out, io.writer);
+    if (!io.restart.empty()) at = resume_from(io.restart, s, sol, mon, sum);
     // The writer's files; a failure to open them stops every process (together).
     auto open_files = [&] {
         if (!io.writer) return;
@@ -383,6 +380,8 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
             times << "index,time_us,time_after_contact_us\n";
             pvd.emplace(pvd_path);
         } else {
+            keep_lines(out / "series.csv", at.rows + 1);
+            keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
             series.open(out / "series.csv", std::ios::app);
             times.open(out / "snapshots" / "times.csv", std::ios::app);
             pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
@@ -442,9 +441,14 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         std::snprintf(name, sizeof name, "map_%04zu.csv", at.snapshot);
         example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from, axis_coordinate(s));
         // The writer's series names the snapshot; the others take part in gathering it (the first
-        // process writes the file: the path they pass is not used).
-        if (pvd) pvd->write(vtp, so);
-        else vtp.write(pvd_path, so);
+        // process writes the file: the path they pass is not used). A failure to write the series
+        // stops every process.
+        const auto series_entry = [&] {
+            if (pvd) pvd->write(vtp, so);
+            else vtp.write(pvd_path, so);
+        };
+        if (io.processes) io.processes->together(series_entry);
+        else series_entry();
         const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
         if (io.writer) times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
         if (io.figures) io.figures->map(at.snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);

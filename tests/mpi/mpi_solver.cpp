@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <cstring>
@@ -189,7 +190,51 @@ struct split_where_hot {
     }
 };
 
+// Two fields per body without hooks: each particle's side is its own half of the block (its side
+// reads the particle alone), so it runs on many processes as it is.
+struct halves {
+    using required_fields = gimlet::field_list<>;
+    static constexpr std::size_t fields_per_body = 2;
+    template <class P, class V>
+    std::size_t side(const P& p, std::size_t, const V&) const {
+        return p.template get<gimlet::fields::position>()[0] > 0 ? 1 : 0;
+    }
+};
+
+// An initialize hook alone, which does not say it distributes: refused on many processes.
+struct initializes_alone {
+    using required_fields = gimlet::field_list<>;
+    static constexpr std::size_t fields_per_body = 1;
+    template <class View>
+    void initialize(View&) {}
+};
+
 }  // namespace
+
+TEST_CASE("solver on many ranks: two fields a body without hooks, and a profile, give one process's bits", "[mpi][solver][self-contact]") {
+    const gimlet::mpi::communicator comm;
+    using halves_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, halves>;
+    const auto scene = slotted_block();
+    gimlet::solver_options<S> one_options;
+    auto many_options = one_options;
+    many_options.processes = gimlet::mpi::make_ranks(comm);
+    halves_solver one(scene, one_options), many(scene, many_options);
+    close_slot(one), close_slot(many);
+    std::size_t steps_differ = 0;
+    for (int k = 0; k < 100; ++k) steps_differ += one.step() == many.step() ? 0 : 1;
+    INFO("rank " << comm.rank() << " of " << comm.size());
+    CHECK(steps_differ == 0);
+    CHECK(differing_particles(many, one) == 0);
+    // The pressure along x across the slot's middle: many particles share a coordinate, and the
+    // list is every process's, in one process's order.
+    const auto pressure = [](const auto& p) { return gimlet::mean_pressure(p); };
+    const auto near_axis = [](const auto& p) { return std::abs(p.template get<gimlet::fields::position>()[1]) < 1e-3; };
+    const auto a = gimlet::diagnostics::profile(one, 0, pressure, near_axis);
+    const auto b = gimlet::diagnostics::profile(many, 0, pressure, near_axis);
+    REQUIRE(a.size() > 100);
+    REQUIRE(a.size() == b.size());
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0);
+}
 
 TEST_CASE("solver on many ranks: a partition written from the docs gives one process's bits", "[mpi][solver][self-contact]") {
     const gimlet::mpi::communicator comm;
@@ -385,6 +430,9 @@ TEST_CASE("solver on many ranks: what is not distributed yet is refused by name"
     using own_partition_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
                                                 gimlet::field_list<>, prepares_alone>;
     CHECK_THROWS_WITH(own_partition_solver(scene, options), Catch::Contains("distributes"));
+    using initializing_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
+                                               gimlet::field_list<>, initializes_alone>;
+    CHECK_THROWS_WITH(initializing_solver(scene, options), Catch::Contains("distributes"));
     // A rank count above the slabs: one cell, with the cubic B-spline's ghost nodes beyond each
     // side, is 10 node rows in 3 slabs of 3.
     gimlet::grid_spec<S> gs;

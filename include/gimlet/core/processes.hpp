@@ -29,11 +29,15 @@ struct nodal_array {
     /// How many blocks of the grid's nodes the array holds.
     std::size_t blocks = 1;
 
-    /// The array `values`, of whole blocks of `nodes` nodes.
+    /// The array `values`, of whole blocks of `nodes` nodes (`whole` checks it: a part block would
+    /// not be completed across processes).
     template <class T>
-    static nodal_array of(std::vector<T>& values, std::size_t nodes) {
+    static nodal_array of(std::vector<T>& values, std::size_t nodes, bool whole = false) {
         static_assert(std::is_trivially_destructible_v<T> && std::is_standard_layout_v<T>,
                       "nodal_array: values copied byte for byte (numbers, fixed-size Eigen vectors)");
+        if (whole && (nodes == 0 || values.size() % nodes != 0))
+            throw invalid_parameter("size of a nodal array a slab pass adds into", std::to_string(values.size()),
+                                    "a whole number of blocks of the grid's " + std::to_string(nodes) + " nodes");
         return {reinterpret_cast<std::byte*>(values.data()), sizeof(T), nodes ? values.size() / nodes : 0};
     }
 };
@@ -168,14 +172,6 @@ template <class Solver>
     else return (void)s, nullptr;
 }
 
-/// Refuse, by name, a measurement that reads one process's particles only on a solver split
-/// between processes (the same on every process: no collective).
-template <class Solver>
-void require_one_process(const Solver& s, const char* what) {
-    if (processes_of(s))
-        throw invalid_parameter(std::string(what) + " on a solver split between processes (solver_options::processes)",
-                                "called", "one process: it reads this process's particles only, and is not distributed yet");
-}
 }  // namespace detail
 
 }  // namespace gimlet

@@ -879,6 +879,9 @@ template <class Solver>
     around(hottest_x, hottest_x, hot_from, hot_to);
     for (auto& o : out) o.clear();
     for (std::size_t i = 0; i < n; ++i) {
+        // A position that is not finite has no bin (converting it to an index is undefined): the
+        // measurement of a run stopped by such a particle still completes on every process.
+        if (!x[i].allFinite()) continue;
         cell_index at{};
         for (int d = 0; d < dim; ++d) at[std::size_t(d)] = bin_of(x[i], d);
         auto within = [&](const cell_index& a, const cell_index& z) {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -18,30 +19,41 @@ namespace gimlet::diagnostics {
 /// (coordinate along `axis`, value) for every particle accepted by `keep(p)`, sorted by
 /// coordinate, then value. `value(p)` and `keep(p)` take a particle handle. On many processes
 /// (solver_options::processes) it is collective: every process gets every process's points,
-/// the same list as one process (the order sorts equal pairs alike).
+/// joined in the particles' ordinal order (one process's order) before the sort, so the same
+/// list as one process, bit for bit (pairs that compare equal, such as 0 and -0, too).
 template <class Solver, class Value, class Keep>
 [[nodiscard]] std::vector<std::pair<double, double>> profile(const Solver& s, int axis, Value value, Keep keep) {
     std::vector<std::pair<double, double>> out;
     const auto& store = s.particles();
+    gimlet::processes* many = gimlet::detail::processes_of(s);
+    struct record {
+        std::uint64_t ordinal;
+        double coordinate, value;
+    };
+    std::vector<record> mine;
     for (std::size_t i = 0; i < store.size(); ++i) {
         const auto p = store[i];
-        if (keep(p)) out.emplace_back(double(p.template get<fields::position>()[axis]), double(value(p)));
-    }
-    if (gimlet::processes* many = gimlet::detail::processes_of(s)) {
-        std::vector<std::byte> mine(out.size() * 2 * sizeof(double));
-        for (std::size_t k = 0; k < out.size(); ++k) {
-            std::memcpy(mine.data() + 2 * k * sizeof(double), &out[k].first, sizeof(double));
-            std::memcpy(mine.data() + (2 * k + 1) * sizeof(double), &out[k].second, sizeof(double));
+        if (!keep(p)) continue;
+        const double x = double(p.template get<fields::position>()[axis]), v = double(value(p));
+        if (many) {
+            if constexpr (requires { s.ordinal(i); }) mine.push_back({s.ordinal(i), x, v});
+        } else {
+            out.emplace_back(x, v);
         }
-        const auto in = many->all_to_all(std::vector<std::vector<std::byte>>(std::size_t(many->size()), mine));
-        out.clear();
+    }
+    if (many) {
+        std::vector<std::byte> bytes(mine.size() * sizeof(record));
+        if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+        const auto in = many->all_to_all(std::vector<std::vector<std::byte>>(std::size_t(many->size()), bytes));
+        std::vector<record> every;
         for (const auto& from : in)
-            for (std::size_t at = 0; at + 2 * sizeof(double) <= from.size(); at += 2 * sizeof(double)) {
-                std::pair<double, double> point;
-                std::memcpy(&point.first, from.data() + at, sizeof(double));
-                std::memcpy(&point.second, from.data() + at + sizeof(double), sizeof(double));
-                out.push_back(point);
+            for (std::size_t at = 0; at + sizeof(record) <= from.size(); at += sizeof(record)) {
+                record r;
+                std::memcpy(&r, from.data() + at, sizeof r);
+                every.push_back(r);
             }
+        std::sort(every.begin(), every.end(), [](const record& a, const record& b) { return a.ordinal < b.ordinal; });
+        for (const record& r : every) out.emplace_back(r.coordinate, r.value);
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -224,8 +224,10 @@ private:
     [[nodiscard]] typename S::vector unit(std::size_t e, [[maybe_unused]] std::size_t n) {
         constexpr int dim = S::dim;
         typename S::vector ref;
-        assert(best_particle_[e] < n);  // pass 1 set it wherever pass 2 asks (finite masses)
         if (!unit_set_[e]) {
+            // Pass 1 set it wherever pass 2 asks (finite masses); an entry whose reference is
+            // another process's has its direction set already (merge_reference_directions).
+            assert(best_particle_[e] < n);
             ref = current_normal<S>(best_particle_[e]).normalized();
             for (int d = 0; d < dim; ++d) unit_[e * std::size_t(dim) + std::size_t(d)] = double(ref[d]);
             unit_set_[e] = 1;

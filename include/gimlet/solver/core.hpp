@@ -381,7 +381,8 @@ private:
     // The exchange of a slab pass that adds into `arrays` (none on one process).
     template <class... Arrays>
     [[nodiscard]] auto fold_of(Arrays&... arrays) {
-        return detail::fold_exchange<sizeof...(Arrays)>{processes(), {nodal_array::of(arrays, grid_.size())...}};
+        gimlet::processes* p = processes();
+        return detail::fold_exchange<sizeof...(Arrays)>{p, {nodal_array::of(arrays, grid_.size(), p != nullptr)...}};
     }
     // Rows of nodes flagged for for_each_particle_by_slab_reaching (a partition's split_rows(),
     // or rows given to its view) must be one flag per row of the last axis: `what` names them.
