@@ -7,14 +7,16 @@
 #    the distance contact, four consistent-mass iterations) at CELL_MM to END_US (series.csv);
 #  - strong scaling, the two-disk example (examples/sulsky_disks, elastic, single field, MUSL) at
 #    DISK_CELL to 0.3 s (energy.csv);
-#  - weak scaling, the two disks: P processes on a cell DISK_CELL / sqrt(P), P times the
-#    particles (energy.csv differs with the cell; each size against its own first run).
+#  - weak scaling, the two disks: P processes on about P times the particles, the cell 1 / N
+#    with N the nearest whole number to sqrt(P) / DISK_CELL (the unit square holds whole cells;
+#    energy.csv differs with the cell: each size against its own first run).
 #
 #   bash benchmarks/mpi/scaling.sh [BUILD] [REPEATS] [MAX_PROCESSES] [CELL_MM] [END_US] [DISK_CELL]
 #
 # BUILD: a configured and built release tree with MPI (default build/release); defaults 3
 # repeats, 2 processes, the flagship at 0.5 mm to 10 us, the disks at 0.0025 m (160,000 particles).
 set -euo pipefail
+shopt -s inherit_errexit
 build=${1:-build/release}
 repeats=${2:-3}
 most=${3:-2}
@@ -77,12 +79,12 @@ strong "flagship, plane, ${cell_mm} mm to ${end_us} us" series.csv "$flagship" -
     --snapshot-every-us 0 --quiet --no-figures
 strong "two disks, ${disk_cell} m to 0.3 s" energy.csv "$disks" --cell "$disk_cell" --end-time 0.3
 
-echo "two disks, weak: P times the particles on P processes (cell ${disk_cell} / sqrt(P))"
+echo "two disks, weak: about P times the particles on P processes (cell 1 / round(sqrt(P) / ${disk_cell}))"
 echo "| run | cell (m) | median wall (s) | ratio to one process |"
 echo "| --- | --- | --- | --- |"
 base=""
 for p in $(seq 1 "$most"); do
-    cell=$(awk -v c="$disk_cell" -v p="$p" 'BEGIN { printf "%.6g", c / sqrt(p) }')
+    cell=$(awk -v c="$disk_cell" -v p="$p" 'BEGIN { printf "%.17g", 1 / int(sqrt(p) / c + 0.5) }')
     table="weak-$p"
     # P processes against one process on P threads, the same size.
     if [ "$p" = 1 ]; then
