@@ -7,8 +7,10 @@
 #include "gimlet/core/error.hpp"
 #include "gimlet/core/exact_sum.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <span>
@@ -172,6 +174,26 @@ template <class Solver>
     else return (void)s, nullptr;
 }
 
+/// Every process's `mine` on every process, in increasing `ordinal` (a record's leading
+/// std::uint64_t: its particle's ordinal), records of one ordinal in the order their process
+/// gave them: the sequence one process's particle loop makes. `Record` is copied byte for byte.
+/// Collective.
+template <class Record>
+[[nodiscard]] std::vector<Record> in_ordinal_order(gimlet::processes& procs, const std::vector<Record>& mine) {
+    static_assert(std::is_trivially_copyable_v<Record>, "in_ordinal_order: records copied byte for byte");
+    std::vector<std::byte> bytes(mine.size() * sizeof(Record));
+    if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+    const auto in = procs.all_to_all(std::vector<std::vector<std::byte>>(std::size_t(procs.size()), bytes));
+    std::vector<Record> every;
+    for (const auto& from : in)
+        for (std::size_t at = 0; at + sizeof(Record) <= from.size(); at += sizeof(Record)) {
+            Record r;
+            std::memcpy(&r, from.data() + at, sizeof r);
+            every.push_back(r);
+        }
+    std::stable_sort(every.begin(), every.end(), [](const Record& a, const Record& b) { return a.ordinal < b.ordinal; });
+    return every;
+}
 }  // namespace detail
 
 }  // namespace gimlet

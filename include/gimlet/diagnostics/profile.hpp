@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -41,20 +40,8 @@ template <class Solver, class Value, class Keep>
             out.emplace_back(x, v);
         }
     }
-    if (many) {
-        std::vector<std::byte> bytes(mine.size() * sizeof(record));
-        if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
-        const auto in = many->all_to_all(std::vector<std::vector<std::byte>>(std::size_t(many->size()), bytes));
-        std::vector<record> every;
-        for (const auto& from : in)
-            for (std::size_t at = 0; at + sizeof(record) <= from.size(); at += sizeof(record)) {
-                record r;
-                std::memcpy(&r, from.data() + at, sizeof r);
-                every.push_back(r);
-            }
-        std::sort(every.begin(), every.end(), [](const record& a, const record& b) { return a.ordinal < b.ordinal; });
-        for (const record& r : every) out.emplace_back(r.coordinate, r.value);
-    }
+    if (many)
+        for (const record& r : gimlet::detail::in_ordinal_order(*many, mine)) out.emplace_back(r.coordinate, r.value);
     std::sort(out.begin(), out.end());
     return out;
 }

@@ -77,47 +77,15 @@ inline std::vector<std::vector<strip_point>> strips_of_every_process(gimlet::pro
                                                                      const std::vector<std::vector<strip_point>>& mine,
                                                                      const std::vector<std::vector<std::uint64_t>>& ordinals) {
     struct record {
-        std::uint64_t ordinal;
+        std::uint64_t ordinal, line;
         strip_point point;
     };
-    static_assert(std::is_trivially_copyable_v<record>, "points are copied byte for byte");
-    // Per line: the number of points, then each point with its particle's ordinal.
-    std::vector<std::byte> bytes;
-    auto append = [&](const void* from, std::size_t size) {
-        const std::size_t at = bytes.size();
-        bytes.resize(at + size);
-        std::memcpy(bytes.data() + at, from, size);
-    };
-    for (std::size_t j = 0; j < mine.size(); ++j) {
-        const std::uint64_t count = mine[j].size();
-        append(&count, sizeof count);
-        for (std::size_t k = 0; k < mine[j].size(); ++k) {
-            const record r{ordinals[j][k], mine[j][k]};
-            append(&r, sizeof r);
-        }
-    }
-    const auto in = procs.all_to_all(std::vector<std::vector<std::byte>>(std::size_t(procs.size()), bytes));
-    std::vector<std::vector<record>> every(mine.size());
-    for (const auto& from : in) {
-        std::size_t at = 0;
-        for (auto& line : every) {
-            std::uint64_t count = 0;
-            std::memcpy(&count, from.data() + at, sizeof count);
-            at += sizeof count;
-            for (std::uint64_t k = 0; k < count; ++k, at += sizeof(record)) {
-                record r;
-                std::memcpy(&r, from.data() + at, sizeof r);
-                line.push_back(r);
-            }
-        }
-    }
+    std::vector<record> flat;
+    for (std::size_t j = 0; j < mine.size(); ++j)
+        for (std::size_t k = 0; k < mine[j].size(); ++k) flat.push_back({ordinals[j][k], j, mine[j][k]});
+    // A ring's two points share an ordinal and keep their order.
     std::vector<std::vector<strip_point>> out(mine.size());
-    for (std::size_t j = 0; j < every.size(); ++j) {
-        // Stable: a ring's two points share an ordinal and keep their order.
-        std::stable_sort(every[j].begin(), every[j].end(), [](const record& a, const record& b) { return a.ordinal < b.ordinal; });
-        out[j].reserve(every[j].size());
-        for (const record& r : every[j]) out[j].push_back(r.point);
-    }
+    for (const record& r : gimlet::detail::in_ordinal_order(procs, flat)) out[std::size_t(r.line)].push_back(r.point);
     return out;
 }
 
