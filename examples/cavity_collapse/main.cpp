@@ -31,7 +31,10 @@
 // Built with MPI (gimlet::mpi, where the toolchain has it), it runs on many processes too,
 // `mpirun -np 2 cavity_collapse --threads 1 ...`: the same files, bit for bit (summary.csv's
 // ranks column aside, and its wall time), written by the first process, which alone prints and
-// draws; a checkpoint resumes on any number of processes.
+// draws, except the ParaView snapshots: each is particles_NNNNNN.pvtp, one piece a process
+// (particles_NNNNNN_<rank>.vtp), whose particles, put in the order of their `ordinal` array,
+// are one process's bit for bit;
+// a checkpoint resumes on any number of processes.
 #include "cavity_collapse/cavity_collapse.hpp"
 #include "cavity_collapse/flags.hpp"
 #include "common/cli.hpp"
@@ -378,13 +381,11 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
             write_header(series, s);
             times.open(out / "snapshots" / "times.csv", std::ios::trunc);
             times << "index,time_us,time_after_contact_us\n";
-            pvd.emplace(pvd_path);
         } else {
             keep_lines(out / "series.csv", at.rows + 1);
             keep_lines(out / "snapshots" / "times.csv", at.snapshot + 1);
             series.open(out / "series.csv", std::ios::app);
             times.open(out / "snapshots" / "times.csv", std::ios::app);
-            pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time())));
         }
         // Exact numbers: a resumed run's rows match the uninterrupted run's.
         gimlet::io::exact_numbers(series);
@@ -393,6 +394,10 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
     };
     if (io.processes) io.processes->together(open_files);
     else open_files();
+    // The snapshots' series, on every process (on many, the first writes the .pvd and each
+    // snapshot is one piece a process).
+    if (io.restart.empty()) pvd.emplace(pvd_path, io.processes);
+    else pvd.emplace(gimlet::io::pvd_writer::resume(pvd_path, double(sol.time()), io.processes));
     // The whole run's particles (collective).
     const auto whole_count = [&] {
         const std::uint64_t mine = sol.particles().size();
@@ -440,15 +445,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         char name[32];
         std::snprintf(name, sizeof name, "map_%04zu.csv", at.snapshot);
         example::write_particle_map(out / "snapshots" / name, so, cavity_collapse::parallel_from, axis_coordinate(s));
-        // The writer's series names the snapshot; the others take part in gathering it (the first
-        // process writes the file: the path they pass is not used). A failure to write the series
-        // stops every process.
-        const auto series_entry = [&] {
-            if (pvd) pvd->write(vtp, so);
-            else vtp.write(pvd_path, so);
-        };
-        if (io.processes) io.processes->together(series_entry);
-        else series_entry();
+        pvd->write(vtp, so);  // collective on many processes: a failure on any stops all
         const double after_contact_us = (double(so.time()) - contact_time(s)) * 1e6;
         if (io.writer) times << at.snapshot << ',' << double(so.time()) * 1e6 << ',' << after_contact_us << '\n';
         if (io.figures) io.figures->map(at.snapshot, after_contact_us, s.snapshot_every <= 0 && double(so.time()) >= last_listed);

@@ -370,3 +370,51 @@ TEST_CASE("pvd: the series lists every snapshot at its exact time, relative name
     CHECK(same_bits(listed[1].first, times[1]));
     CHECK(listed[2].second == "particles_000002.vtp");
 }
+
+TEST_CASE("vtp pieces: on one process one piece with the ordinals, and a .pvtp that names it with every array's type",
+          "[io][vtk]") {
+    io_test::scratch_dir dir("pvtp");
+    auto sol = small_solver();
+    sol.step();
+    gimlet::io::vtp_writer_for<elastic_solver> vtp(gimlet::io::precision::float32);
+    vtp.add_field<fields::velocity>().add_field<fields::body>().add(
+        "speed", [](const auto& p) { return p.template get<fields::velocity>().norm(); }, gimlet::io::precision::float32);
+    vtp.write_pieces(dir / "snap.pvtp", sol);
+    vtp.write(dir / "whole.vtp", sol);
+    CHECK(gimlet::io::vtp_writer_for<elastic_solver>::piece_path(dir / "snap.pvtp", 0) == dir / "snap_0.vtp");
+    // The piece holds write()'s arrays bit for bit, then the ordinals 0 .. n - 1 (the GlobalIds).
+    const vtp_file piece(dir / "snap_0.vtp"), whole(dir / "whole.vtp");
+    for (const char* name : {"velocity", "body", "speed", "Points", "connectivity", "offsets"}) {
+        INFO(name);
+        CHECK(piece.arrays.at(name).at("type") == whole.arrays.at(name).at("type"));
+        CHECK(same_bits(piece.values<char>(name), whole.values<char>(name)));
+    }
+    CHECK(piece.arrays.at("ordinal").at("type") == "Int64");
+    const auto ordinals = piece.values<std::int64_t>("ordinal");
+    REQUIRE(ordinals.size() == sol.particles().size());
+    for (std::size_t i = 0; i < ordinals.size(); ++i) CHECK(ordinals[i] == std::int64_t(i));
+    CHECK(piece.header_attribute("PointData", "GlobalIds") == "ordinal");
+    const auto bytes = io_test::read_bytes(dir / "snap.pvtp");
+    const std::string xml(bytes.begin(), bytes.end());
+    CHECK_THAT(xml, Contains("<VTKFile type=\"PPolyData\" version=\"1.0\""));
+    CHECK_THAT(xml, Contains("<PPointData GlobalIds=\"ordinal\">"));
+    CHECK(xml.ends_with("  </PPolyData>\n</VTKFile>\n"));
+    const auto pieces = elements(xml, "Piece");
+    REQUIRE(pieces.size() == 1);
+    CHECK(pieces[0].at("Source") == "snap_0.vtp");
+    // Every point array and the points, with the piece's type and components, in its order.
+    const auto declared = elements(xml, "PDataArray");
+    std::vector<std::string> names;
+    for (const auto& a : declared) {
+        names.push_back(a.at("Name"));
+        CHECK(a.at("type") == piece.arrays.at(a.at("Name")).at("type"));
+        CHECK(a.at("NumberOfComponents") == piece.arrays.at(a.at("Name")).at("NumberOfComponents"));
+    }
+    CHECK(names == std::vector<std::string>{"velocity", "body", "speed", "ordinal", "Points"});
+    // The summary's name must end in .pvtp (ParaView picks its reader by it); "ordinal" is taken.
+    CHECK_THROWS_WITH(vtp.write_pieces(dir / "snap.vtp", sol), Contains("snap.vtp") && Contains("ending in .pvtp"));
+    CHECK(!std::filesystem::exists(dir / "snap.vtp"));
+    vtp.add("ordinal", [](const auto&) { return 0; });
+    CHECK_THROWS_WITH(vtp.write_pieces(dir / "again.pvtp", sol), Contains("ordinal") && Contains("VTK array name"));
+    CHECK(!std::filesystem::exists(dir / "again_0.vtp"));
+}

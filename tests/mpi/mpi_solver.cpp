@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -57,6 +58,23 @@ std::size_t differing_particles(const Solver& many, const Solver& one) {
         differ += same ? 0 : 1;
     }
     return differ;
+}
+
+// The bytes of appended block k of a .vtp this library writes (after its UInt64 size).
+std::string block(const std::filesystem::path& path, int k) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    const std::string start = "<AppendedData encoding=\"raw\">\n   _";
+    auto at = text.find(start);
+    if (at == std::string::npos) return {};
+    at += start.size();
+    for (;; --k) {
+        std::uint64_t n = 0;
+        if (at + 8 > text.size()) return {};
+        std::memcpy(&n, text.data() + at, 8);
+        if (k == 0) return text.substr(at + 8, n);
+        at += 8 + n;
+    }
 }
 
 // A partition whose prepare hook reads this process's particles alone (it does not say it
@@ -409,9 +427,62 @@ TEST_CASE("solver on many ranks: a checkpoint written on two ranks resumes on al
         CHECK(!sa.empty());
         CHECK(sa == sb);
     }
+    // Pieces, one a rank, nothing gathered: put in ordinal order by their ordinals (the array
+    // after the two added), they hold one process's particles (here the velocities, the first
+    // array), and the .pvtp names them all.
+    const auto pvtp = std::filesystem::temp_directory_path() / ("gimlet_mpi_pieces_" + std::to_string(comm.size()) + ".pvtp");
+    writer.write_pieces(pvtp, resumed);
+    comm.barrier();
+    if (comm.rank() == 0) {
+        const std::string whole = block(vtp_one, 0);
+        const std::size_t size = 3 * sizeof(double);
+        REQUIRE(whole.size() == one.particles().size() * size);
+        std::string ordered(whole.size(), '\0');
+        std::vector<int> seen(one.particles().size(), 0);
+        for (int r = 0; r < comm.size(); ++r) {
+            const std::string v = block(writer.piece_path(pvtp, r), 0), o = block(writer.piece_path(pvtp, r), 2);
+            REQUIRE(o.size() / 8 * size == v.size());
+            for (std::size_t k = 0; k < o.size() / 8; ++k) {
+                std::int64_t ordinal = -1;
+                std::memcpy(&ordinal, o.data() + 8 * k, 8);
+                REQUIRE(ordinal >= 0);
+                REQUIRE(std::size_t(ordinal) < seen.size());
+                ++seen[std::size_t(ordinal)];
+                ordered.replace(std::size_t(ordinal) * size, size, v, k * size, size);
+            }
+        }
+        CHECK(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(seen.size()));  // each once
+        CHECK(ordered == whole);
+        std::ifstream in(pvtp, std::ios::binary);
+        const std::string summary{std::istreambuf_iterator<char>(in), {}};
+        CHECK(summary.find("<VTKFile type=\"PPolyData\"") != std::string::npos);
+        for (int r = 0; r <= comm.size(); ++r)
+            CHECK((summary.find("<Piece Source=\"" + writer.piece_path(pvtp, r).filename().string() + "\"/>") !=
+                   std::string::npos) == (r < comm.size()));
+    }
+    // A series on many ranks: one .pvd, each snapshot a .pvtp of pieces. Made without the
+    // solver's processes it is refused on every rank; in a directory that cannot be written every
+    // rank stops.
+    const auto pvd = std::filesystem::temp_directory_path() / ("gimlet_mpi_series_" + std::to_string(comm.size()) + ".pvd");
+    gimlet::io::pvd_writer series(pvd, options.processes);
+    const auto snapshot = series.write(writer, resumed);
+    CHECK(snapshot.extension() == ".pvtp");
+    CHECK(std::filesystem::exists(snapshot));
+    CHECK(std::filesystem::exists(writer.piece_path(snapshot, comm.size() - 1)));
+    const std::filesystem::path alone_pvd = pvd.string() + ".alone_" + std::to_string(comm.rank()) + ".pvd";
+    gimlet::io::pvd_writer alone(alone_pvd);
+    CHECK_THROWS_WITH(alone.write(writer, resumed), Catch::Matchers::Contains("the solver's (solver_options::processes)"));
+    CHECK_THROWS_AS(gimlet::io::pvd_writer(std::filesystem::temp_directory_path() / "gimlet no such directory" / "s.pvd",
+                                           options.processes),
+                    gimlet::processes_stopped);
+    std::filesystem::remove(alone_pvd);
     comm.barrier();
     if (pair != MPI_COMM_NULL) MPI_Comm_free(&pair);
-    if (comm.rank() == 0) std::filesystem::remove(path), std::filesystem::remove(vtp_one), std::filesystem::remove(vtp_many);
+    if (comm.rank() == 0) {
+        for (const auto& f : {path, vtp_one, vtp_many, pvtp, pvd, snapshot}) std::filesystem::remove(f);
+        for (int r = 0; r < comm.size(); ++r)
+            std::filesystem::remove(writer.piece_path(pvtp, r)), std::filesystem::remove(writer.piece_path(snapshot, r));
+    }
 }
 
 TEST_CASE("solver on many ranks: what is not distributed yet is refused by name", "[mpi][solver]") {

@@ -92,3 +92,40 @@ TEST_CASE("seeding: a block with a cavity has the block's mass less the cavity's
         previous = error;
     }
 }
+
+TEST_CASE("seeding: batches a caller thins keep the others in seeding order, across bodies and batches", "[scene]") {
+    // Two bodies, the first larger than a batch: every particle whose seeding index is a
+    // multiple of 3 kept, the rest dropped batch by batch, as a process keeps its own slabs'.
+    auto gs = grid_of(1.0 / 200, 1.0);  // 80 000 and 40 000 particles
+    gimlet::scene::scene<S, gimlet::elastic_material> sc(gs);
+    const auto mat = gimlet::make_elastic_material(1000.0, 1e6, 0.3);
+    sc.add_body(gimlet::scene::box<S>(vec(0, 0), vec(1, 0.5)), mat, vec::Zero(), 2, "lower");
+    sc.add_body(gimlet::scene::box<S>(vec(0, 0.5), vec(1, 0.75)), mat, vec::Zero(), 2, "upper");
+    const gimlet::grid<S> grid(gs, 2);
+    using store = gimlet::particle_store<S, gimlet::core_fields<S>>;
+    store all, thinned;
+    gimlet::detail::seed_particles(sc, grid, all);
+    REQUIRE(all.size() > gimlet::detail::seed_batch + 1000);
+    std::size_t seeded = 0, batches = 0, largest = 0;
+    gimlet::detail::seed_particles(sc, grid, thinned, [&](store& s, std::size_t first) {
+        ++batches;
+        largest = std::max(largest, s.size() - first);
+        std::size_t kept = first;
+        for (std::size_t i = first; i < s.size(); ++i, ++seeded) {
+            if (seeded % 3 != 0) continue;
+            s.template column<gimlet::fields::position>()[kept] = s.template column<gimlet::fields::position>()[i];
+            s.template column<gimlet::fields::body>()[kept++] = s.template column<gimlet::fields::body>()[i];
+        }
+        s.resize(kept);
+    });
+    CHECK(seeded == all.size());
+    CHECK(largest == gimlet::detail::seed_batch);
+    CHECK(batches == 3);  // a full one and the rest in the lower body, one in the upper
+    REQUIRE(thinned.size() == (all.size() + 2) / 3);
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < thinned.size(); ++k)
+        differ += thinned.column<gimlet::fields::position>()[k] != all.column<gimlet::fields::position>()[3 * k] ||
+                  thinned.column<gimlet::fields::body>()[k] != all.column<gimlet::fields::body>()[3 * k];
+    CHECK(differ == 0);
+    CHECK(thinned.column<gimlet::fields::body>().back() == 1);
+}

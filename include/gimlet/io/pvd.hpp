@@ -5,6 +5,7 @@
 /// every snapshot so that a run stopped at any moment leaves a series ParaView opens.
 
 #include "gimlet/core/error.hpp"
+#include "gimlet/core/processes.hpp"
 #include "gimlet/io/detail/file.hpp"
 #include "gimlet/io/detail/text.hpp"
 
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -27,6 +29,11 @@ namespace gimlet::io {
 ///
 /// File names are stored relative to the .pvd's directory, so the output directory can be
 /// moved or copied as a whole.
+///
+/// On many processes, every process makes the series with the solver's processes
+/// (solver_options::processes) and calls each member alike (they are collective): the first
+/// process writes the .pvd, a failure on any throws on all, and each snapshot is a `.pvtp` of
+/// one piece a process (vtp_writer::write_pieces), nothing gathered.
 class pvd_writer {
 public:
     /// One snapshot: its time (s) and its file, relative to the .pvd's directory.
@@ -38,26 +45,46 @@ public:
     };
 
     /// Start a new, empty series at `path` (written at once, so a path that cannot be written
-    /// is refused before the run starts). Throws invalid_parameter naming the path.
-    explicit pvd_writer(std::filesystem::path path) : path_(std::move(path)) { rewrite(); }
+    /// is refused before the run starts). `processes`: the solver's on many processes (see the
+    /// class), null on one. Throws invalid_parameter naming the path.
+    explicit pvd_writer(std::filesystem::path path, std::shared_ptr<gimlet::processes> processes = nullptr)
+        : path_(std::move(path)), processes_(std::move(processes)) {
+        rewrite();
+    }
 
     /// Continue the series of an interrupted run resumed from a checkpoint taken at `time`:
     /// keeps the entries of the existing file at `path` up to and including `time` and drops
-    /// the later ones (the resumed run writes them again). Throws invalid_parameter if the file
-    /// cannot be read or holds no collection.
-    [[nodiscard]] static pvd_writer resume(std::filesystem::path path, double time) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in)
-            throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
-                                    "an existing, readable .pvd file to continue");
-        const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-        if (text.find("<Collection") == std::string::npos)
-            throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
-                                    "a .pvd file holding a <Collection>");
+    /// the later ones (the resumed run writes them again). On many processes the first reads
+    /// the file and shares its entries. Throws invalid_parameter if the file cannot be read or
+    /// holds no collection.
+    [[nodiscard]] static pvd_writer resume(std::filesystem::path path, double time,
+                                           std::shared_ptr<gimlet::processes> processes = nullptr) {
+        std::string text;
+        const auto read = [&] {
+            std::ifstream in(path, std::ios::binary);
+            if (!in)
+                throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
+                                        "an existing, readable .pvd file to continue");
+            text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+            if (text.find("<Collection") == std::string::npos)
+                throw invalid_parameter("ParaView series file (.pvd)", detail::quoted(path.string()),
+                                        "a .pvd file holding a <Collection>");
+        };
         std::vector<entry> kept;
-        for (const auto& e : parse(text, path))
-            if (e.time <= time) kept.push_back(e);
-        return pvd_writer(std::move(path), std::move(kept));
+        const auto keep = [&] {
+            for (const auto& e : parse(text, path))
+                if (e.time <= time) kept.push_back(e);
+        };
+        if (processes) {
+            const bool first = processes->rank() == 0;
+            processes->together([&] { if (first) read(); });
+            text = processes->share(first ? &text : nullptr);
+            processes->together(keep);  // the same text, so the same outcome on every process
+        } else {
+            read();
+            keep();
+        }
+        return pvd_writer(std::move(path), std::move(kept), std::move(processes));
     }
 
     /// Record the snapshot `file` at `time` (s) and rewrite the .pvd. A relative `file` is
@@ -78,13 +105,23 @@ public:
     /// `<stem>_<NNNNNN>.vtp` next to the .pvd, `<stem>` the .pvd's name without extension and
     /// NNNNNN the number of entries so far, and record it at the solver's time.
     /// Returns the snapshot's path.
+    ///
+    /// On many processes (the series made with the solver's processes) each snapshot is
+    /// `<stem>_<NNNNNN>.pvtp` with its pieces `<stem>_<NNNNNN>_<rank>.vtp`
+    /// (vtp_writer::write_pieces). Throws invalid_parameter where the series and the solver do
+    /// not have the same processes.
     template <class Writer, class Solver>
     std::filesystem::path write(const Writer& writer, const Solver& solver) {
+        if (gimlet::detail::processes_of(solver) != processes_.get())
+            throw invalid_parameter("ParaView series' processes", processes_ ? "those given to the series" : "none",
+                                    "the solver's (solver_options::processes): make the series with them on every "
+                                    "process");
         char number[32];
-        std::snprintf(number, sizeof number, "_%06zu.vtp", entries_.size());
+        std::snprintf(number, sizeof number, processes_ ? "_%06zu.pvtp" : "_%06zu.vtp", entries_.size());
         std::filesystem::path file = path_;
         file.replace_filename(path_.stem().string() + number);
-        writer.write(file, solver);
+        if (processes_) writer.write_pieces(file, solver);
+        else writer.write(file, solver);
         add(double(solver.time()), file);
         return file;
     }
@@ -95,8 +132,8 @@ public:
     [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
 
 private:
-    pvd_writer(std::filesystem::path path, std::vector<entry> entries)
-        : path_(std::move(path)), entries_(std::move(entries)) {
+    pvd_writer(std::filesystem::path path, std::vector<entry> entries, std::shared_ptr<gimlet::processes> processes)
+        : path_(std::move(path)), entries_(std::move(entries)), processes_(std::move(processes)) {
         rewrite();
     }
 
@@ -108,8 +145,17 @@ private:
     }
 
     // The whole file is rewritten through a temporary and a rename: the previous complete
-    // version stays in place until the new one is.
+    // version stays in place until the new one is. On many processes the first writes it.
     void rewrite() const {
+        if (processes_) {
+            const bool first = processes_->rank() == 0;
+            processes_->together([&] { if (first) rewrite_file(); });
+        } else {
+            rewrite_file();
+        }
+    }
+
+    void rewrite_file() const {
         std::ostringstream xml;
         xml << "<?xml version=\"1.0\"?>\n"
             << "<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
@@ -153,6 +199,7 @@ private:
 
     std::filesystem::path path_;
     std::vector<entry> entries_;
+    std::shared_ptr<gimlet::processes> processes_;
 };
 
 }  // namespace gimlet::io

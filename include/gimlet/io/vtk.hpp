@@ -24,6 +24,7 @@
 
 #include <bit>
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -186,6 +187,72 @@ public:
         write(path, solver.particles(), double(solver.time()));
     }
 
+    /// Write a solver's particles as pieces, one a process, and a `.pvtp` at `path` that names
+    /// them, which ParaView opens as one dataset: each process writes its own particles to
+    /// `<stem>_<rank>.vtp` beside `path` (`<stem>` the name of `path` without its extension),
+    /// then the first process writes `path`. Nothing is gathered, so no process holds more than
+    /// its own particles. Each piece holds the arrays added, and one more, `ordinal`
+    /// (ordinal_array; Int64, the pieces' GlobalIds): each particle's number in the whole run
+    /// (`solver.ordinal(i)`, its index in one process's store), so that the pieces' particles
+    /// can be put in one process's order. On many processes (solver_options::processes) it is
+    /// collective and a failure to write on any process throws on all; on one process it writes
+    /// the one piece `<stem>_0.vtp` and the `.pvtp`. Throws invalid_parameter for a `path` that
+    /// does not end in `.pvtp` or cannot be written, or where an array added is named `ordinal`.
+    template <class Solver>
+        requires requires(const Solver& s, std::size_t i) {
+            { s.particles() } -> std::same_as<const Store&>;
+            s.time();
+            { s.ordinal(i) } -> std::convertible_to<std::uint64_t>;
+        }
+    void write_pieces(const std::filesystem::path& path, const Solver& solver) const {
+        if (path.extension() != ".pvtp")
+            throw invalid_parameter("VTK pieces' summary file", detail::quoted(path.string()),
+                                    "a path ending in .pvtp (ParaView chooses its reader by the extension)");
+        for (const auto& a : arrays_)
+            if (a.name == ordinal_array)
+                throw invalid_parameter("VTK array name", detail::quoted(a.name),
+                                        "a name other than the one pieces give the particles' ordinals");
+        gimlet::processes* p = gimlet::detail::processes_of(solver);
+        const int rank = p ? p->rank() : 0, size = p ? p->size() : 1;
+        // The pieces' names go into the summary's XML (the same check on every process).
+        const std::string piece_name = piece_path(path, size - 1).filename().string();
+        if (const auto why = gimlet::io::detail::xml_attribute_problem(piece_name); !why.empty())
+            throw invalid_parameter("VTK pieces' summary file", detail::quoted(path.string()),
+                                    "a name of UTF-8 text without control characters (it holds " + why + ")");
+        const auto mine = [&] {
+            const auto& particles = solver.particles();
+            std::vector<std::int64_t> ordinals(particles.size());
+            for (std::size_t i = 0; i < ordinals.size(); ++i) ordinals[i] = std::int64_t(solver.ordinal(i));
+            gimlet::io::detail::write_atomically(piece_path(path, rank), "VTK output file (.vtp)", [&](std::ostream& out) {
+                write_to(out, particles, double(solver.time()), &ordinals);
+            });
+        };
+        const auto summary = [&] {
+            if (rank != 0) return;
+            gimlet::io::detail::write_atomically(path, "VTK pieces' summary file (.pvtp)", [&](std::ostream& out) {
+                write_summary(out, path, size);
+            });
+        };
+        if (p) {
+            p->together(mine);
+            p->together(summary);
+        } else {
+            mine();
+            summary();
+        }
+    }
+
+    /// The name of the array of the particles' ordinals in pieces (write_pieces).
+    static constexpr const char* ordinal_array = "ordinal";
+
+    /// The file of piece `rank` of the `.pvtp` at `path` (write_pieces): `<stem>_<rank>.vtp`
+    /// beside it.
+    [[nodiscard]] static std::filesystem::path piece_path(const std::filesystem::path& path, int rank) {
+        std::filesystem::path piece = path;
+        piece.replace_filename(path.stem().string() + "_" + std::to_string(rank) + ".vtp");
+        return piece;
+    }
+
     /// Names of the arrays added so far, in file order.
     [[nodiscard]] std::vector<std::string> array_names() const {
         std::vector<std::string> names;
@@ -242,7 +309,9 @@ private:
         };
     }
 
-    void write_to(std::ostream& out, const Store& s, std::optional<double> time) const {
+    // `ordinals`, if given: one more point array, ordinal_array (Int64), the GlobalIds.
+    void write_to(std::ostream& out, const Store& s, std::optional<double> time,
+                  const std::vector<std::int64_t>* ordinals = nullptr) const {
         const std::size_t n = s.size();
         // Int32 vertex indices while they fit: a third of the size of the points array.
         const bool wide = n > std::size_t(std::numeric_limits<std::int32_t>::max());
@@ -267,11 +336,15 @@ private:
                    "format=\"ascii\">"
                 << gimlet::io::detail::exact_text(*time) << "</DataArray>\n    </FieldData>\n";
         xml << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n
-            << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n      <PointData>\n";
+            << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n      <PointData"
+            << (ordinals ? std::string(" GlobalIds=\"") + ordinal_array + "\"" : std::string()) << ">\n";
         for (const auto& a : arrays_)
             xml << "        <DataArray type=\"" << a.type << "\" Name=\"" << gimlet::io::detail::xml_escape(a.name)
                 << "\" NumberOfComponents=\"" << a.components << "\" format=\"appended\" offset=\""
                 << block(n * std::size_t(a.components) * a.bytes_per_component) << "\"/>\n";
+        if (ordinals)
+            xml << "        <DataArray type=\"Int64\" Name=\"" << ordinal_array
+                << "\" NumberOfComponents=\"1\" format=\"appended\" offset=\"" << block(n * 8) << "\"/>\n";
         xml << "      </PointData>\n      <Points>\n        <DataArray type=\"" << (points64 ? "Float64" : "Float32")
             << "\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
             << block(n * 3 * (points64 ? 8 : 4)) << "\"/>\n      </Points>\n      <Verts>\n";
@@ -292,6 +365,11 @@ private:
             a.fill(s, bytes);
             emit();
         }
+        if (ordinals) {
+            bytes.resize(n * 8);
+            if (n) std::memcpy(bytes.data(), ordinals->data(), n * 8);
+            emit();
+        }
         const auto& x = s.template column<fields::position>();
         if (points64) fill_points<double>(x, bytes);
         else fill_points<float>(x, bytes);
@@ -303,6 +381,29 @@ private:
         else fill_indices<std::int32_t>(n, 1, bytes);
         emit();
         out << "\n  </AppendedData>\n</VTKFile>\n";
+    }
+
+    // The .pvtp of write_pieces: the arrays' types and names (those of every piece, the
+    // ordinals last) and the pieces' files, relative to its directory.
+    void write_summary(std::ostream& out, const std::filesystem::path& path, int pieces) const {
+        std::ostringstream xml;
+        xml << "<?xml version=\"1.0\"?>\n"
+            << "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\""
+            << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian")
+            << "\" header_type=\"UInt64\">\n  <PPolyData GhostLevel=\"0\">\n    <PPointData GlobalIds=\""
+            << ordinal_array << "\">\n";
+        for (const auto& a : arrays_)
+            xml << "      <PDataArray type=\"" << a.type << "\" Name=\"" << gimlet::io::detail::xml_escape(a.name)
+                << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
+        xml << "      <PDataArray type=\"Int64\" Name=\"" << ordinal_array << "\" NumberOfComponents=\"1\"/>\n";
+        xml << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\""
+            << (points_ == precision::float64 ? "Float64" : "Float32")
+            << "\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+        for (int r = 0; r < pieces; ++r)
+            xml << "    <Piece Source=\""
+                << gimlet::io::detail::xml_escape(piece_path(path, r).filename().generic_string()) << "\"/>\n";
+        xml << "  </PPolyData>\n</VTKFile>\n";
+        out << xml.str();
     }
 
     template <class Out, class Column>

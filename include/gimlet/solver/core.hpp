@@ -575,8 +575,15 @@ private:
     // `message` with describe_particle's local index replaced by the particle's ordinal (into
     // *key where given).
     [[nodiscard]] std::string with_ordinal(const std::string& message, double* key = nullptr) const;
-    // The particles of this process's slabs kept, in seeding order (the constructor's).
+    // The particles of this process's slabs kept, in their order, their ordinals their indices.
     void keep_own_particles();
+    // From particle `first` on, those of this process's slabs kept in order and the others
+    // dropped; ordinal_ gains the kept ones' ordinals (`ordinal` for particle `first`, then on).
+    void keep_own_from(std::size_t first, std::uint64_t ordinal);
+    // The scene's particles; on many processes those of this process's slabs, in seeding order,
+    // each with its ordinal (its index in the whole seeding), kept batch by batch as they are
+    // seeded, so that no process holds the whole scene.
+    void seed(const scene::scene<S, M>& sc);
     // window_: this process's slabs' rows and the band above its last slab (wrapped on a
     // periodic axis).
     void set_window();
@@ -656,9 +663,15 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     : options_(options), grid_(sc.grid(), Sh::stencil), partition_(partition) {
     detail::check_setup(sc, options_, friction);
     for (const auto& b : sc.bodies()) materials_.push_back(b.material);
-    detail::seed_particles(sc, grid_, particles_);
+    slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
+    if (auto* p = processes()) {
+        p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
+        set_window();
+    }
+    seed(sc);
     real heaviest = 0;
     for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
+    if (auto* p = processes()) heaviest = real(p->max(double(heaviest)));  // exact: the whole run's
     mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
     check_light_possible();
     // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
@@ -671,13 +684,7 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
     wall_free_.assign(grid_.entries(), vector::Ones());
     grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
-    slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
-    if (auto* p = processes()) {
-        detail::check_distributable<!distributable>(options_, lights_.possible());
-        p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
-        set_window();
-        keep_own_particles();
-    }
+    if (processes()) detail::check_distributable<!distributable>(options_, lights_.possible());
     if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
         compute_stencils();
         slabs_.bucket();

@@ -136,19 +136,42 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::copy_particle(const store_
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::seed(const scene::scene<S, M>& sc) {
+    if (!processes()) {
+        detail::seed_particles(sc, grid_, particles_);
+        return;
+    }
+    ordinal_.clear();
+    std::uint64_t seeded = 0;
+    detail::seed_particles(sc, grid_, particles_, [&](store_type&, std::size_t first) {
+        const std::size_t batch = particles_.size() - first;
+        keep_own_from(first, seeded);
+        seeded += batch;
+    });
+    compute_stencils();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
+    ordinal_.clear();
+    keep_own_from(0, 0);
     compute_stencils();
-    const auto& slab = slabs_.slab_of();
+}
+
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_from(std::size_t first, std::uint64_t ordinal) {
+    stencils_.resize(particles_.size());
+    slabs_.resize(particles_.size());
     const int me = processes()->rank();
-    std::vector<std::size_t> kept;
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-        if (processes()->owner(int(slab[i])) == me) kept.push_back(i);
-    store_type mine;
-    mine.resize(kept.size());
-    for (std::size_t k = 0; k < kept.size(); ++k) copy_particle(particles_, kept[k], mine, k);
-    particles_ = std::move(mine);
-    ordinal_.assign(kept.begin(), kept.end());
-    compute_stencils();
+    std::size_t kept = first;
+    for (std::size_t i = first; i < particles_.size(); ++i, ++ordinal) {
+        compute_stencil(i);
+        if (processes()->owner(int(slabs_.slab_of()[i])) != me) continue;
+        if (kept != i) copy_particle(particles_, i, particles_, kept);
+        ordinal_.push_back(ordinal);
+        ++kept;
+    }
+    particles_.resize(kept);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

@@ -10,6 +10,7 @@
 #include "gimlet/scene/scene.hpp"
 
 #include <array>
+#include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -40,12 +41,22 @@ void add_particle(Store& particles, const scene::body<S, M>& body, std::uint32_t
 }
 
 
+/// What seed_particles does with each batch by default: keeps it.
+struct keep_every_particle {
+    template <class Store>
+    void operator()(Store&, std::size_t) const noexcept {}
+};
+
 /// Fill `particles` with the particles of the scene's bodies: one at the centre of every cell of
 /// a sub-cell lattice (particles_per_cell per axis) aligned with the grid that lies inside the
-/// body. Throws invalid_parameter for a body outside the grid, two overlapping bodies, or a body
-/// with no particle.
-template <Space S, class M, class Store>
-void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& particles) {
+/// body. After each batch of seeded particles (at most seed_batch, and at the end of each body),
+/// `batch(particles, first)` may drop any of the batch's particles, from index `first` on, and
+/// keep the others in order (a process keeping those of its own slabs: no process then holds the
+/// whole scene). Throws invalid_parameter for a body outside the grid, two overlapping bodies, or
+/// a body with no particle (seeded, kept or not).
+inline constexpr std::size_t seed_batch = std::size_t(1) << 16;
+template <Space S, class M, class Store, class Batch = keep_every_particle>
+void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& particles, Batch&& batch = {}) {
     using real = typename S::real;
     using vector = typename S::vector;
     constexpr int dim = S::dim;
@@ -69,7 +80,7 @@ void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& pa
             lo[d] = static_cast<long>(std::floor((body.lower[d] - gs.lower[d]) / delta));
             hi[d] = static_cast<long>(std::ceil((body.upper[d] - gs.lower[d]) / delta));
         }
-        const std::size_t first = particles.size();
+        std::size_t first = particles.size(), seeded = 0;
         std::array<long, dim> j = lo;
         while (true) {
             vector x;
@@ -81,12 +92,15 @@ void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& pa
                                                 "non-overlapping (they share the point " +
                                                     format_position(x) + ")");
                 add_particle(particles, body, b, x, delta);
+                ++seeded;
+                if (particles.size() - first >= seed_batch) batch(particles, first), first = particles.size();
             }
             int d = 0;
             while (d < dim && ++j[d] >= hi[d]) j[d] = lo[d], ++d;
             if (d == dim) break;
         }
-        require(particles.size() > first, "particle count of " + body.name, 0.0,
+        batch(particles, first);
+        require(seeded > 0, "particle count of " + body.name, 0.0,
                 ">= 1 (the region holds no particle-lattice point: too small for the cell, "
                 "or its cavity removes all of it)");
     }
