@@ -51,8 +51,8 @@ def main():
     a.add_argument("--hot-spot-radius", type=float, default=0.75, help="mm, the hot spot's radius (0: no hot spot)")
     a.add_argument("--ghost-bytes", type=float, default=48, help="bytes a hot-spot ghost particle")
     a.add_argument("--bodies", type=int, default=2)
-    a.add_argument("--windowed", action="store_true",
-                   help="node passes over each process's own rows (not yet: every process sweeps the whole grid)")
+    a.add_argument("--whole-grid", action="store_true",
+                   help="charge every process the whole grid's node passes (the step sweeps each process's own rows)")
     o = a.parse_args()
 
     cells_l = round(o.lateral / o.cell)
@@ -84,7 +84,7 @@ def main():
     counts = sorted({1 << k for k in range(12) if (1 << k) <= slabs} | {slabs})
     for r in counts:
         work = compute_1 / r
-        nodes = entries * o.t_e / rate / (r if o.windowed else 1)
+        nodes = entries * o.t_e / rate / (1 if o.whole_grid else r)
         bands = 0.0 if r == 1 else 2 * band_bytes / o.bandwidth + 2 * 2 * folds * o.latency
         ghost = 0.0 if r == 1 else 2 * ghost_bytes / o.bandwidth + 3 * o.latency * r  # three all-to-alls
         coll = 0.0 if r == 1 else o.allreduces * math.ceil(math.log2(r)) * o.latency
@@ -94,14 +94,12 @@ def main():
               f"{base / step:.1f} | {base / step / r:.2f} |")
     print()
     store, stencil, grid_entry = o.particle_bytes, o.stencil_bytes, o.entry_bytes
-    print(f"Memory a process, now (every process seeds the whole scene and weighs it once to keep its own, and "
-          f"holds the whole grid): {particles * (store + stencil) / 2**30:.0f} GiB at the start, "
-          f"{entries * grid_entry / 2**30:.1f} GiB of grid arrays.")
-    print(f"With seeding by slab and a grid of its own rows: {particles * (store + stencil) / 2**30:.0f} GiB / P "
-          f"+ {entries * grid_entry / 2**30:.1f} GiB / P.")
+    print(f"Memory a process: its particles, {particles * (store + stencil) / 2**30:.0f} GiB / P (kept batch by "
+          f"batch from the seeding on), and the whole grid's arrays, {entries * grid_entry / 2**30:.1f} GiB "
+          f"(arrays of its own rows would make it {entries * grid_entry / 2**30:.1f} GiB / P).")
     print()
     print("Weak scaling (the last axis grown with the processes, the same slabs a process): the particle work, the")
-    print("bands and the node passes (windowed) stay the same a process; only the collectives grow, as log2 of the")
+    print("bands and the node passes stay the same a process; only the collectives grow, as log2 of the")
     print(f"processes: {o.allreduces} allreduces x {o.latency * 1e6:.0f} us x log2(P) a step.")
 
 

@@ -24,6 +24,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -83,10 +84,15 @@ public:
     /// the scatter completed on both sides, so both find the same shared nodes there):
     /// for_each_particle(rows, f, array) then completes the mass gradients' sums in the bands
     /// (a nodal array, the scatter's exchange), and the reaches, maxima, are swapped per band.
+    /// `window`: the node ranges this process's particles reach, increasing and apart (its rows
+    /// and the band above), outside which every node is empty here: the node passes visit these
+    /// only. Empty: the whole grid.
     template <class Stencils, class Masses, class Entries, class ForEach>
     void find_shared_nodes(const grid<S>& grid, real cutoff, std::uint64_t step, double time, const Stencils& stencils,
                            const Masses& mass, std::size_t fields_per_body, const Entries& entries_of, ForEach&& for_each_particle,
-                           int threads = 1, bool parallel = false, gimlet::processes* on = nullptr) {
+                           int threads = 1, bool parallel = false, gimlet::processes* on = nullptr,
+                           std::span<const std::pair<std::size_t, std::size_t>> window = {}) {
+        window_.assign(window.begin(), window.end());
         // On many processes a node with too many fields on one stops all before the exchanges below.
         if (on) on->together([&] { count_shared(grid, cutoff, step, time, threads, parallel); });
         else count_shared(grid, cutoff, step, time, threads, parallel);
@@ -118,11 +124,14 @@ public:
         const bool trial = pass == pass::trial, deciding = trial || pass == pass::decide;
         if (trial) {
             // v + dt f / m with the walls, as MUSL and USL decide after the grid update.
-            trial_velocity_.resize(grid.entries());
-            for (std::size_t e = 0; e < grid.entries(); ++e)
-                trial_velocity_[e] = grid.mass[e] > cutoff
-                                         ? vector(grid.velocity_old[e] + dt * grid.force[e] / grid.mass[e])
-                                         : vector::Zero();
+            trial_velocity_.resize(grid.entries());  // (zero outside the window, where nothing has mass)
+            for (std::size_t base = 0; base < grid.entries(); base += nodes)
+                for_window_nodes(0, nodes, [&](std::size_t node) {
+                    const std::size_t e = base + node;
+                    trial_velocity_[e] = grid.mass[e] > cutoff
+                                             ? vector(grid.velocity_old[e] + dt * grid.force[e] / grid.mass[e])
+                                             : vector::Zero();
+                });
             grid.apply_walls(trial_velocity_, wall_pass::trial);
         }
         for (std::size_t s = 0; s < shared_.size(); ++s) {
@@ -233,6 +242,17 @@ private:
     static constexpr std::size_t node_block = 4096;  // the node passes' blocks of nodes
     static constexpr std::size_t max_k = contact::node_view<S>::max_fields;
 
+    // f(node) for the nodes of [first, last) in the window (find_shared_nodes), in increasing order.
+    template <class F>
+    void for_window_nodes(std::size_t first, std::size_t last, F&& f) const {
+        if (window_.empty()) {
+            for (std::size_t node = first; node < last; ++node) f(node);
+            return;
+        }
+        for (const auto& [a, b] : window_)
+            for (std::size_t node = std::max(first, a), end = std::min(last, b); node < end; ++node) f(node);
+    }
+
     // The fields above the cut-off at a node, in field order (at most max_k + 1 written to out);
     // returns how many there are.
     static std::size_t fields_at(const grid<S>& grid, real cutoff, std::size_t node, std::uint32_t* out) {
@@ -253,7 +273,7 @@ private:
     void count_shared(const grid<S>& grid, real cutoff, std::uint64_t step, double time, int threads, bool parallel) {
         const std::size_t nodes = grid.size(), fields_n = grid.field_count();
         const std::size_t blocks = (nodes + node_block - 1) / node_block;
-        shared_index_.resize(nodes);
+        if (shared_index_.size() != nodes) shared_index_.assign(nodes, -1);  // outside the window for good
         block_count_.assign(blocks, {});
         const auto blocks_n = static_cast<std::ptrdiff_t>(blocks);
         gimlet::detail::thread_shares count_shares(blocks_n, threads, parallel);
@@ -262,17 +282,17 @@ private:
             for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
                 block_counts& c = block_count_[std::size_t(b)];
                 std::uint32_t ids[max_k + 1];
-                for (std::size_t node = std::size_t(b) * node_block, last = std::min(nodes, node + node_block); node < last;
-                     ++node) {
+                const std::size_t first = std::size_t(b) * node_block;
+                for_window_nodes(first, std::min(nodes, first + node_block), [&](std::size_t node) {
                     const std::size_t k = fields_at(grid, cutoff, node, ids);
                     shared_index_[node] = k < 2 ? -1 : 0;
-                    if (k < 2) continue;
+                    if (k < 2) return;
                     if (k > max_k) {
                         c.too_many = std::min(c.too_many, node);
-                        continue;
+                        return;
                     }
                     ++c.nodes, c.fields += k, c.pairs += k * k;
-                }
+                });
             }
         block_counts total{};
         for (block_counts& c : block_count_) {
@@ -306,9 +326,9 @@ private:
         for (auto claimed = fill_shares.start(); fill_shares.claim(claimed);)
             for (std::ptrdiff_t b = claimed.first, end = claimed.last; b < end; ++b) {
                 block_counts at = block_count_[std::size_t(b)];
-                for (std::size_t node = std::size_t(b) * node_block, last = std::min(nodes, node + node_block); node < last;
-                     ++node) {
-                    if (shared_index_[node] < 0) continue;
+                const std::size_t first_node = std::size_t(b) * node_block;
+                for_window_nodes(first_node, std::min(nodes, first_node + node_block), [&](std::size_t node) {
+                    if (shared_index_[node] < 0) return;
                     const std::size_t first = at.fields;
                     const std::size_t k = fields_at(grid, cutoff, node, shared_field_.data() + first);
                     shared_index_[node] = static_cast<std::ptrdiff_t>(at.nodes);
@@ -318,7 +338,7 @@ private:
                         shared_normal_[first + j] = vector::Zero();  // the mass gradient's sum (sum_mass_gradients)
                     }
                     ++at.nodes, at.fields += k, at.pairs += k * k;
-                }
+                });
             }
     }
 
@@ -334,7 +354,10 @@ private:
     void sum_mass_gradients(const grid<S>& grid, const Stencils& stencils, const Masses& mass, const Entries& entries_of,
                             ForEach& for_each_particle, bool across) {
         const std::size_t nodes = grid.size();
-        if (across) gradient_.assign(grid.entries(), vector::Zero());
+        if (across && gradient_.size() != grid.entries()) gradient_.assign(grid.entries(), vector::Zero());
+        else if (across)  // (zero outside the window for good)
+            for (std::size_t base = 0; base < grid.entries(); base += nodes)
+                for_window_nodes(0, nodes, [&](std::size_t node) { gradient_[base + node] = vector::Zero(); });
         auto particle = [&](std::size_t i) {
             auto entry = entries_of(i);
             const real mp = mass[i];
@@ -492,6 +515,7 @@ private:
     std::vector<real> m_;
     std::vector<vector> p_, p_before_, trial_velocity_;
     std::vector<vector> gradient_;  // on many processes: the mass gradients per field and node
+    std::vector<std::pair<std::size_t, std::size_t>> window_;  // find_shared_nodes's window
 };
 
 }  // namespace gimlet::multi_field

@@ -580,6 +580,18 @@ private:
     // From particle `first` on, those of this process's slabs kept in order and the others
     // dropped; ordinal_ gains the kept ones' ordinals (`ordinal` for particle `first`, then on).
     void keep_own_from(std::size_t first, std::uint64_t ordinal);
+    // Whether entries [first, last) hold one of the window's nodes (always, on one process).
+    [[nodiscard]] bool window_holds(std::size_t first, std::size_t last) const noexcept {
+        if (window_.empty()) return true;
+        const std::size_t nodes = grid_.size();
+        for (std::size_t e = first; e < last;) {
+            const std::size_t base = e / nodes * nodes, a = e - base, b = std::min(last, base + nodes) - base;
+            for (const auto& [lo, hi] : window_)
+                if (a < hi && lo < b) return true;
+            e = base + nodes;
+        }
+        return false;
+    }
     // The scene's particles; on many processes those of this process's slabs, in seeding order,
     // each with its ordinal (its index in the whole seeding), kept batch by batch as they are
     // seeded, so that no process holds the whole scene.
@@ -647,8 +659,9 @@ private:
     health_events health_;
     mutable detail::pending_health pending_health_;  // stable_time_step's guards, until the step is taken
     std::vector<std::uint64_t> ordinal_;  // on many processes, each particle's ordinal (ordinal())
-    // On many processes, the node ranges (of every field block) this process's particles reach:
-    // the node passes sweep these only (for_each_swept_entry); and that pass's runs of entries.
+    // On many processes, the node ranges (of every field block) this process's particles reach,
+    // increasing and apart: the node passes sweep these only (for_each_swept_entry, the shared
+    // nodes' search, the consistent mass's first pass); and for_each_swept_entry's runs.
     std::vector<std::pair<std::size_t, std::size_t>> window_, runs_;
     bool state_touched_ = true;  // the scene's particles are checked before the first step
 };
@@ -806,7 +819,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
                                     for_each_particle_by_slab_reaching(rows, f, arrays...);
                                 },
                                 threads(),
-                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold, processes());
+                                std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold, processes(), window_);
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

@@ -96,7 +96,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
     if (last + 1 < slabs) end = std::min(slabs_.end_row(last + 1), end + slabs_.slab_rows);
     window_.push_back({std::size_t(slabs_.first_row(first)) * per_row, std::size_t(end) * per_row});
     if (last + 1 == slabs && slabs_.periodic() && slabs > 1 && first > 0)
-        window_.push_back({0, std::size_t(std::min(slabs_.end_row(0), slabs_.slab_rows)) * per_row});
+        window_.insert(window_.begin(), {0, std::size_t(std::min(slabs_.end_row(0), slabs_.slab_rows)) * per_row});
 }
 
 // A particle's record for another process: its ordinal, then each column's value, byte for byte.

@@ -122,7 +122,8 @@ private:
     // writes a^(0) in every block of the swept field slots, light entries included: the
     // particles' gathers read a at every node of their stencils. The slots the step does not
     // sweep (Core::swept_fields: self-contact's second fields where nothing splits) hold no
-    // particle's node, so it skips them too.
+    // particle's node, so it skips them too, and on many processes so are the rows outside the
+    // process's window (Core::window_holds).
     template <class Core>
     void lumped_accelerations(Core& c) {
         const std::size_t ne = c.grid_.entries();
@@ -143,7 +144,10 @@ private:
                 // A block within a field slot the step does not sweep has no mass.
                 const std::size_t field = first / grid_nodes;
                 const bool unswept = field == (last - 1) / grid_nodes && field % Core::fields_per_body >= c.swept_fields();
-                for (std::size_t e = first; e < last && !unswept; ++e) {
+                // On many processes, a block outside the rows this process's particles reach has
+                // no mass here and is never read.
+                const bool outside = !c.window_holds(first, last);
+                for (std::size_t e = first; e < last && !unswept && !outside; ++e) {
                     const real m = c.grid_.mass[e];
                     heavy = heavy || m > c.mass_cutoff_;
                     first_[e] = m > c.mass_cutoff_ ? vector(c.wall_free_[e].cwiseProduct(c.grid_.force[e] / m)) : vector::Zero();
