@@ -74,7 +74,7 @@ TEST_CASE("checkpoint: a resumed run matches the uninterrupted run bit for bit",
     hmx_solver first(scene);
     steps(first, at);
     gimlet::io::save_checkpoint(dir / "run.ckpt", first, {{"next_output_us", 1.25}, {"snapshot", 3}});
-    CHECK(!std::filesystem::exists(dir / "run.ckpt.tmp"));
+    CHECK(!std::filesystem::exists(gimlet::io::detail::temporary_for(dir / "run.ckpt")));
 
     const auto info = gimlet::io::read_checkpoint_info(dir / "run.ckpt");
     CHECK(info.dimension == 2);
@@ -250,7 +250,7 @@ TEST_CASE("checkpoint: an unwritable path is refused, an existing checkpoint sur
     const auto file = dir / "run.ckpt";
     gimlet::io::save_checkpoint(file, sol);
     const auto before = io_test::read_bytes(file);
-    std::filesystem::create_directory(dir / "run.ckpt.tmp");  // blocks the temporary file
+    std::filesystem::create_directory(gimlet::io::detail::temporary_for(file));  // blocks the temporary file
     steps(sol, 1);
     CHECK_THROWS_WITH(gimlet::io::save_checkpoint(file, sol), Contains("run.ckpt") && Contains("writable file"));
     CHECK(io_test::read_bytes(file) == before);

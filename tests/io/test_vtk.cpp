@@ -278,7 +278,7 @@ TEST_CASE("vtp and pvd: an output path that cannot be written is refused, naming
     // A directory in the way: the data is written, then the final rename fails; nothing is left.
     std::filesystem::create_directory(dir / "taken.vtp");
     CHECK_THROWS_WITH(vtp.write(dir / "taken.vtp", particles), Contains("taken.vtp") && Contains("writable file"));
-    CHECK(!std::filesystem::exists(dir / "taken.vtp.tmp"));
+    CHECK(!std::filesystem::exists(gimlet::io::detail::temporary_for(dir / "taken.vtp")));
     CHECK_THROWS_WITH(gimlet::io::pvd_writer(dir / "no such directory" / "s.pvd"),
                       Contains("ParaView series file (.pvd)") && Contains("s.pvd") && Contains("writable file"));
     CHECK_THROWS_WITH(gimlet::io::pvd_writer::resume(dir / "absent.pvd", 1.0),
@@ -351,7 +351,7 @@ TEST_CASE("pvd: the series lists every snapshot at its exact time, relative name
         CHECK_THAT(f.xml, Contains(value));
         CHECK(f.header_attribute("Piece", "NumberOfPoints") == std::to_string(sol.particles().size()));
     }
-    CHECK(!std::filesystem::exists(dir / "particles.pvd.tmp"));
+    CHECK(!std::filesystem::exists(gimlet::io::detail::temporary_for(dir / "particles.pvd")));
 
     // A file elsewhere is stored relative to the .pvd's directory.
     std::filesystem::create_directory(dir / "sub");

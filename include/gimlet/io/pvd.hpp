@@ -32,8 +32,10 @@ namespace gimlet::io {
 ///
 /// On many processes, every process makes the series with the solver's processes
 /// (solver_options::processes) and calls each member alike (they are collective): the first
-/// process writes the .pvd, a failure on any throws on all, and each snapshot is a `.pvtp` of
-/// one piece a process (vtp_writer::write_pieces), nothing gathered.
+/// process writes the .pvd, each snapshot is a `.pvtp` of one piece a process
+/// (vtp_writer::write_pieces), nothing gathered, and a failure on any process throws
+/// gimlet::processes_stopped on all (with the message below; its bad_input() is true) where one
+/// process throws invalid_parameter.
 class pvd_writer {
 public:
     /// One snapshot: its time (s) and its file, relative to the .pvd's directory.
@@ -113,15 +115,24 @@ public:
     template <class Writer, class Solver>
     std::filesystem::path write(const Writer& writer, const Solver& solver) {
         if (gimlet::detail::processes_of(solver) != processes_.get())
-            throw invalid_parameter("ParaView series' processes", processes_ ? "those given to the series" : "none",
+            throw invalid_parameter("ParaView series' processes",
+                                    processes_ ? "those given to the series, not the solver's"
+                                               : "none, where the solver has processes",
                                     "the solver's (solver_options::processes): make the series with them on every "
                                     "process");
         char number[32];
         std::snprintf(number, sizeof number, processes_ ? "_%06zu.pvtp" : "_%06zu.vtp", entries_.size());
         std::filesystem::path file = path_;
         file.replace_filename(path_.stem().string() + number);
-        if (processes_) writer.write_pieces(file, solver);
-        else writer.write(file, solver);
+        if constexpr (requires { writer.write_pieces(file, solver); }) {
+            if (processes_) writer.write_pieces(file, solver);
+            else writer.write(file, solver);
+        } else {
+            if (processes_)
+                throw invalid_parameter("ParaView series' writer", "one without write_pieces",
+                                        "a writer of pieces (vtp_writer) on many processes");
+            writer.write(file, solver);
+        }
         add(double(solver.time()), file);
         return file;
     }

@@ -194,7 +194,8 @@ public:
     /// its own particles. Each piece holds the arrays added, and one more, `ordinal`
     /// (ordinal_array; Int64, the pieces' GlobalIds): each particle's number in the whole run
     /// (`solver.ordinal(i)`, its index in one process's store), so that the pieces' particles
-    /// can be put in one process's order. On many processes (solver_options::processes) it is
+    /// can be put in one process's order. A sort (solver_options::sort_interval) renumbers
+    /// them: across snapshots an ordinal names one particle only where the run does not sort. On many processes (solver_options::processes) it is
     /// collective and a failure to write on any process throws on all; on one process it writes
     /// the one piece `<stem>_0.vtp` and the `.pvtp`. Throws invalid_parameter for a `path` that
     /// does not end in `.pvtp` or cannot be written, or where an array added is named `ordinal`.
@@ -211,7 +212,7 @@ public:
         for (const auto& a : arrays_)
             if (a.name == ordinal_array)
                 throw invalid_parameter("VTK array name", detail::quoted(a.name),
-                                        "a name other than the one pieces give the particles' ordinals");
+                                        "a name other than 'ordinal', which write_pieces gives the particles' ordinals");
         gimlet::processes* p = gimlet::detail::processes_of(solver);
         const int rank = p ? p->rank() : 0, size = p ? p->size() : 1;
         // The pieces' names go into the summary's XML (the same check on every process).
@@ -343,7 +344,7 @@ private:
                 << "\" NumberOfComponents=\"" << a.components << "\" format=\"appended\" offset=\""
                 << block(n * std::size_t(a.components) * a.bytes_per_component) << "\"/>\n";
         if (ordinals)
-            xml << "        <DataArray type=\"Int64\" Name=\"" << ordinal_array
+            xml << "        <DataArray type=\"Int64\" IdType=\"1\" Name=\"" << ordinal_array
                 << "\" NumberOfComponents=\"1\" format=\"appended\" offset=\"" << block(n * 8) << "\"/>\n";
         xml << "      </PointData>\n      <Points>\n        <DataArray type=\"" << (points64 ? "Float64" : "Float32")
             << "\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
@@ -395,7 +396,7 @@ private:
         for (const auto& a : arrays_)
             xml << "      <PDataArray type=\"" << a.type << "\" Name=\"" << gimlet::io::detail::xml_escape(a.name)
                 << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
-        xml << "      <PDataArray type=\"Int64\" Name=\"" << ordinal_array << "\" NumberOfComponents=\"1\"/>\n";
+        xml << "      <PDataArray type=\"Int64\" IdType=\"1\" Name=\"" << ordinal_array << "\" NumberOfComponents=\"1\"/>\n";
         xml << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\""
             << (points_ == precision::float64 ? "Float64" : "Float32")
             << "\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";

@@ -321,8 +321,8 @@ private:
     // The step's start: what changed between steps checked, and the guards of the time step this
     // step takes counted (count_health).
     void check_step_start();
-    // Weights at x^n of every particle.
-    void compute_stencils();
+    // Weights at x^n of every particle (from particle `first` on; the arrays sized to all).
+    void compute_stencils(std::size_t first = 0);
 
     // The stencil of particle i, computed once and shared by every transfer of the step, and
     // the slab its scatter belongs to.
@@ -676,28 +676,32 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     : options_(options), grid_(sc.grid(), Sh::stencil), partition_(partition) {
     detail::check_setup(sc, options_, friction);
     for (const auto& b : sc.bodies()) materials_.push_back(b.material);
+    // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
+    // them; a single-field policy keeps one.
+    const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
+    // Refused before the nodal arrays are allocated, and before the processes take this
+    // solver's slabs (a processes object keeps the first solver's for good).
+    detail::check_options_for(options_, has_reference_isentrope, grid_.size() * fields);
+    if (processes()) detail::check_distributable<!distributable>(options_, false);  // light particles below
     slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
     if (auto* p = processes()) {
         p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
         set_window();
+        // A failure while seeding (a bad scene, no memory for a process's share) stops all.
+        p->together([&] { seed(sc); });
+    } else {
+        seed(sc);
     }
-    seed(sc);
     real heaviest = 0;
     for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
     if (auto* p = processes()) heaviest = real(p->max(double(heaviest)));  // exact: the whole run's
     mass_cutoff_ = real(options_.mass_cutoff) * heaviest;
-    check_light_possible();
-    // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
-    // them; a single-field policy keeps one.
-    const std::size_t fields = multi_field ? materials_.size() * fields_per_body : 1;
-    // Refused before the nodal arrays are allocated.
-    detail::check_options_for(options_, has_reference_isentrope, grid_.size() * fields);
+    check_light_possible();  // refused on many processes where any particle can be light
     if constexpr (multi_field) grid_.set_field_count(fields);
     // Which components of a node's force the walls leave free (1) or take (0): the projection
     // apply_walls makes on velocities, for the forces of light nodes (grid_to_particles).
     wall_free_.assign(grid_.entries(), vector::Ones());
     grid_.apply_walls(wall_free_, wall_pass::none);  // a one-sided wall holds no force component for good
-    if (processes()) detail::check_distributable<!distributable>(options_, lights_.possible());
     if constexpr (requires(Part& p, partition_view_type<store_type>& v) { p.initialize(v); }) {
         compute_stencils();
         slabs_.bucket();
@@ -793,14 +797,15 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::filter_volumes() {
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils() {
-    const auto n = static_cast<std::ptrdiff_t>(particles_.size());
+void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils(std::size_t first) {
+    const auto n = static_cast<std::ptrdiff_t>(particles_.size() - first);
     stencils_.resize(particles_.size());
     slabs_.resize(particles_.size());
     detail::thread_shares shares(n, threads(), n >= parallel_threshold);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i) compute_stencil(static_cast<std::size_t>(i));
+        for (std::ptrdiff_t i = claimed.first, end = claimed.last; i < end; ++i)
+            compute_stencil(first + static_cast<std::size_t>(i));
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>

@@ -160,12 +160,10 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
 void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_from(std::size_t first, std::uint64_t ordinal) {
-    stencils_.resize(particles_.size());
-    slabs_.resize(particles_.size());
+    compute_stencils(first);
     const int me = processes()->rank();
     std::size_t kept = first;
     for (std::size_t i = first; i < particles_.size(); ++i, ++ordinal) {
-        compute_stencil(i);
         if (processes()->owner(int(slabs_.slab_of()[i])) != me) continue;
         if (kept != i) copy_particle(particles_, i, particles_, kept);
         ordinal_.push_back(ordinal);

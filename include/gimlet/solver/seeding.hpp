@@ -47,14 +47,22 @@ struct keep_every_particle {
     void operator()(Store&, std::size_t) const noexcept {}
 };
 
+/// The most particles seed_particles seeds before it hands them to its batch hook.
+inline constexpr std::size_t seed_batch = std::size_t(1) << 16;
+
 /// Fill `particles` with the particles of the scene's bodies: one at the centre of every cell of
 /// a sub-cell lattice (particles_per_cell per axis) aligned with the grid that lies inside the
-/// body. After each batch of seeded particles (at most seed_batch, and at the end of each body),
-/// `batch(particles, first)` may drop any of the batch's particles, from index `first` on, and
-/// keep the others in order (a process keeping those of its own slabs: no process then holds the
-/// whole scene). Throws invalid_parameter for a body outside the grid, two overlapping bodies, or
-/// a body with no particle (seeded, kept or not).
-inline constexpr std::size_t seed_batch = std::size_t(1) << 16;
+/// body, body by body in the scene's order.
+///
+/// `batch(particles, first)` is called after every seed_batch particles of a body and at the end
+/// of each body (then possibly with no particle after `first`): the batch is the particles from
+/// index `first` on, all of one body, in seeding order. The hook may drop any of them (resize the
+/// store after moving the kept ones forward, in order) and must leave the particles before
+/// `first` as they are and add none; what it throws goes through. A process keeping those of its
+/// own slabs so holds no more than its own particles and one batch.
+///
+/// Throws invalid_parameter for a body outside the grid, two overlapping bodies, or a body with
+/// no particle (seeded, whether kept or not).
 template <Space S, class M, class Store, class Batch = keep_every_particle>
 void seed_particles(const scene::scene<S, M>& sc, const grid<S>& grid, Store& particles, Batch&& batch = {}) {
     using real = typename S::real;

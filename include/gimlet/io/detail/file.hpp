@@ -13,6 +13,9 @@
 #include <fstream>
 #include <string>
 #include <system_error>
+#if __has_include(<unistd.h>)
+#include <unistd.h>
+#endif
 
 namespace gimlet::io::detail {
 
@@ -30,7 +33,19 @@ inline void discard(const std::filesystem::path& tmp) noexcept {
     std::filesystem::remove(tmp, ignored);
 }
 
-/// Write `path` through `fill(std::ofstream&)`. The bytes go to `<path>.tmp` first and are
+/// The temporary name write_atomically writes `path` under: `<path>.tmp.<process id>` (where the
+/// system has process ids), of this process alone, so that processes writing the same path at
+/// once (each its complete file) never rename each other's half-written one.
+[[nodiscard]] inline std::filesystem::path temporary_for(const std::filesystem::path& path) {
+    std::filesystem::path tmp = path;
+    tmp += ".tmp";
+#if __has_include(<unistd.h>)
+    tmp += "." + std::to_string(::getpid());
+#endif
+    return tmp;
+}
+
+/// Write `path` through `fill(std::ofstream&)`. The bytes go to temporary_for(path) first and are
 /// renamed over `path` only once the stream reported no error after closing, so a reader (or a
 /// run resumed after a crash) never finds a half-written file under the final name. rename()
 /// within one directory is atomic on POSIX file systems; it does not guard against power loss
@@ -38,8 +53,7 @@ inline void discard(const std::filesystem::path& tmp) noexcept {
 template <class Fill>
 void write_atomically(const std::filesystem::path& path, const std::string& what, Fill&& fill) {
     if (path.empty()) throw unwritable(what, path, "the path is empty");
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
+    const std::filesystem::path tmp = temporary_for(path);
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         if (!out) throw unwritable(what, path, "could not create " + tmp.filename().string());
