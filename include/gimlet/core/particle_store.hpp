@@ -92,6 +92,8 @@ public:
     }
     /// Reserve room for n particles in every column.
     void reserve(std::size_t n) { (std::get<index_of<Tags>()>(columns_).reserve(n), ...); }
+    /// Give back the room beyond size() in every column (after the store shrank).
+    void shrink_to_fit() { (std::get<index_of<Tags>()>(columns_).shrink_to_fit(), ...); }
 
     /// A handle to particle i (no bounds check).
     [[nodiscard]] particle_ref<particle_store> operator[](std::size_t i) noexcept { return {*this, i}; }

@@ -545,7 +545,7 @@ checkpoint_values load_checkpoint(const std::filesystem::path& path, Solver& sol
         std::remove_cvref_t<decltype(current)> whole;
         whole.resize(parsed.info.particles);
         detail::read_columns(bytes, parsed, whole);
-        solver.replace_particles(whole);
+        solver.replace_particles(std::move(whole));
         solver.resume_at(static_cast<typename S::real>(parsed.info.time), parsed.info.steps);
         return parsed.info.values;
     }

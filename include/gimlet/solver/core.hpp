@@ -212,7 +212,7 @@ public:
     /// Replace the particles by `whole`, the whole run's in ordinal order (every process passes
     /// the same): each process keeps those of its own slabs. The next step checks them.
     /// Collective.
-    void replace_particles(const store_type& whole);
+    void replace_particles(store_type whole);
 
 private:
     using stencil_type = detail::stencil<S, Sh::stencil>;

@@ -155,6 +155,9 @@ template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiFiel
 void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
     ordinal_.clear();
     keep_own_from(0, 0);
+    particles_.shrink_to_fit();  // the room the whole run's particles took
+    stencils_.resize(particles_.size());
+    stencils_.shrink_to_fit();
     compute_stencils();
 }
 
@@ -253,8 +256,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::gathered_particles() const
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::replace_particles(const store_type& whole) {
-    particles_ = whole;
+void solver_core<S, Sh, M, Fields, MultiField, Part>::replace_particles(store_type whole) {
+    particles_ = std::move(whole);  // moved in where the caller gives it up: one copy of the whole run, not two
     state_touched_ = true;
     pending_health_.valid = false;
     if (processes()) keep_own_particles();
