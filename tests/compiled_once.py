@@ -80,8 +80,8 @@ def member_of(name, key):
 def main(argv):
     nm, headers, rest = argv[1], argv[2], argv[3:]
     text = "".join(p.read_text() for p in sorted(pathlib.Path(headers).glob("*.hpp")))
-    out_of_class = set(re.findall(r"solver_core<S, Sh, M, Fields, MultiField, Part>::(~?\w+)\(", text))
-    solver_out_of_class = set(re.findall(r"solver<S, Sh, M, C, ExtraFields, Part>::(\w+)\(", text))
+    out_of_class = set(re.findall(r"solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::(~?\w+)\(", text))
+    solver_out_of_class = set(re.findall(r"solver<S, Sh, M, C, ExtraFields, Part, Distributed>::(\w+)\(", text))
     missing = [m for m in REQUIRED_CORE if m not in out_of_class] + \
               [f"solver::{m}" for m in REQUIRED_SOLVER if m not in solver_out_of_class]
     if missing:

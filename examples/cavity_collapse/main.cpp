@@ -345,7 +345,7 @@ int run(const settings& s, const run_files& io, const Contact& contact) {
         else if constexpr (Space::dim == 3) return make_3d_scene<run_material>(s);
         else return make_scene<run_material>(s);
     };
-    gimlet::solver<Space, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
+    example::solver<Space, gimlet::shape::ugimp, run_material, Contact, gimlet::field_list<>, partition> sol(
         scene(), opt, contact, part);
     const auto& out = io.out;
     monitor_of<typename Space::vector> mon(s);

@@ -5,6 +5,7 @@
 // writes, prints and draws.
 
 #include <gimlet/core/processes.hpp>
+#include <gimlet/solver/solver.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -15,6 +16,19 @@
 #endif
 
 namespace example {
+
+// Whether the example is built to run on many processes (with MPI).
+#if GIMLET_EXAMPLE_MPI
+inline constexpr bool distributed = true;
+#else
+inline constexpr bool distributed = false;
+#endif
+
+// The example's solver: one that runs on many processes (gimlet::distributed_solver) where it is
+// built with MPI, else one compiled for one process alone.
+template <class S, class Sh, class M, class C = gimlet::contact::single_field, class X = gimlet::field_list<>,
+          class P = gimlet::multi_field::by_body>
+using solver = gimlet::solver<S, Sh, M, C, X, P, distributed>;
 
 class run_processes {
 public:

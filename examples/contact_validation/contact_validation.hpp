@@ -7,6 +7,8 @@
 
 #include <gimlet/gimlet.hpp>
 
+#include "common/processes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -103,7 +105,7 @@ result run(const settings& s, const std::string& name, const Contact& contact = 
     opt.consistent_mass_iterations = s.consistent_mass;
     opt.cfl = s.cfl;
     if (s.processes) opt.processes = s.processes();
-    gimlet::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, contact);
+    example::solver<S, gimlet::shape::ugimp, material, Contact> sol(make_scene(s), opt, contact);
     sol.run_until(s.time);
     result r;
     r.policy = name;

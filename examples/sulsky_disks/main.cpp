@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     gimlet::solver_options<S> options;
     options.threads = threads;
     options.processes = procs.for_solver();
-    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(scene, options);
+    example::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> sol(scene, options);
 
     std::ofstream csv;
     if (writer) csv.open(out / "energy.csv");

@@ -21,7 +21,7 @@ namespace {
 
 using S = gimlet::space<2>;
 using hmx = gimlet::presets::hmx_material<>;
-using hmx_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
+using hmx_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance>;
 using gimlet::fields::temperature;
 
 constexpr double cell = 1e-3;

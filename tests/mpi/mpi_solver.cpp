@@ -22,7 +22,9 @@
 namespace {
 
 using S = gimlet::space<2>;
-using elastic_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>;
+using elastic_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material>;
+// The same solver compiled for one process alone.
+using one_process_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material>;
 
 // Sulsky, Chen and Schreyer's two elastic disks (1994, section 5.1), on a finer cell: they
 // cross slabs along both axes before, during and after the collision. `upper_first`: the upper
@@ -43,8 +45,8 @@ gimlet::scene::scene<S, gimlet::elastic_material> two_disks(double cell, bool up
 }
 
 // Every particle of `many` (this rank's) has the bits of the particle of `one` with its ordinal.
-template <class Solver>
-std::size_t differing_particles(const Solver& many, const Solver& one) {
+template <class Many, class One>
+std::size_t differing_particles(const Many& many, const One& one) {
     std::size_t differ = 0;
     const auto& a = many.particles();
     const auto& b = one.particles();
@@ -95,7 +97,7 @@ struct prepares_alone {
 
 }  // namespace
 
-TEST_CASE("solver on many ranks: the two disks' particles, steps and sums are one process's bits", "[mpi][solver]") {
+TEST_CASE("solver on many ranks: the two disks' particles, steps and sums are a one-process solver's bits", "[mpi][solver]") {
     const gimlet::mpi::communicator comm;
     const auto scene = two_disks(0.025);
     for (auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usl, gimlet::update_scheme::usf})
@@ -107,7 +109,8 @@ TEST_CASE("solver on many ranks: the two disks' particles, steps and sums are on
             if (scheme != gimlet::update_scheme::usl) one_options.consistent_mass_iterations = 1;
             auto many_options = one_options;
             many_options.processes = gimlet::mpi::make_ranks(comm);
-            elastic_solver one(scene, one_options), many(scene, many_options);
+            one_process_solver one(scene, one_options);
+            elastic_solver many(scene, many_options);
             INFO("rank " << comm.rank() << " of " << comm.size() << ", scheme " << int(scheme) << ", threads " << threads);
             std::size_t steps_differ = 0;
             for (int k = 0; k < 260; ++k)  // past the collision (about 1.1 s, step 150)
@@ -127,8 +130,8 @@ TEST_CASE("solver on many ranks: the two disks' particles, steps and sums are on
 TEST_CASE("solver on many ranks: multi-field contact gives one process's bits", "[mpi][solver]") {
     const gimlet::mpi::communicator comm;
     const auto scene = two_disks(0.025);
-    using bardenhagen_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen>;
-    using distance_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::distance>;
+    using bardenhagen_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen>;
+    using distance_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::distance>;
     auto check = [&](auto one, auto many, const char* law) {
         INFO("rank " << comm.rank() << " of " << comm.size() << ", " << law);
         std::size_t steps_differ = 0;
@@ -231,7 +234,7 @@ struct initializes_alone {
 
 TEST_CASE("solver on many ranks: two fields a body without hooks, and a profile, give one process's bits", "[mpi][solver][self-contact]") {
     const gimlet::mpi::communicator comm;
-    using halves_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, halves>;
+    using halves_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, halves>;
     const auto scene = slotted_block();
     gimlet::solver_options<S> one_options;
     auto many_options = one_options;
@@ -256,7 +259,7 @@ TEST_CASE("solver on many ranks: two fields a body without hooks, and a profile,
 
 TEST_CASE("solver on many ranks: a partition written from the docs gives one process's bits", "[mpi][solver][self-contact]") {
     const gimlet::mpi::communicator comm;
-    using hot_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, split_where_hot>;
+    using hot_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>, split_where_hot>;
     const auto scene = slotted_block();
     gimlet::solver_options<S> one_options;
     auto many_options = one_options;
@@ -276,7 +279,7 @@ TEST_CASE("solver on many ranks: a partition written from the docs gives one pro
 
 TEST_CASE("solver on many ranks: self-contact splits the same nodes and gives one process's bits", "[mpi][solver][self-contact]") {
     const gimlet::mpi::communicator comm;
-    using slot_solver = gimlet::solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>,
+    using slot_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, hmx, gimlet::contact::distance, gimlet::field_list<>,
                                        gimlet::multi_field::self_contact>;
     const auto scene = slotted_block();
     for (auto scheme : {gimlet::update_scheme::musl, gimlet::update_scheme::usf}) {
@@ -421,7 +424,7 @@ TEST_CASE("solver on many ranks: where several particles fail, the lowest ordina
 TEST_CASE("solver on many ranks: a checkpoint written on two ranks resumes on all, bit for bit", "[mpi][solver][checkpoint]") {
     const gimlet::mpi::communicator comm;
     const auto scene = two_disks(0.025);
-    using contact_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::distance>;
+    using contact_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::distance>;
     const auto path = std::filesystem::temp_directory_path() / ("gimlet_mpi_checkpoint_" + std::to_string(comm.size()) + ".ckpt");
     // Written on the first two ranks (one where there is one).
     MPI_Comm pair = MPI_COMM_NULL;
@@ -536,6 +539,9 @@ TEST_CASE("solver on many ranks: what is not distributed yet is refused by name"
     const auto scene = two_disks(0.05);
     gimlet::solver_options<S> options;
     options.processes = gimlet::mpi::make_ranks(comm);
+    // A solver compiled for one process, given processes: pointed to distributed_solver.
+    CHECK_THROWS_WITH(one_process_solver(scene, options), Catch::Contains("solver_options::processes") &&
+                                                            Catch::Contains("gimlet::distributed_solver"));
     options.volumetric_average = true;
     CHECK_THROWS_WITH(elastic_solver(scene, options), Catch::Contains("volumetric_average") && Catch::Contains("many processes"));
     options.volumetric_average = false;
@@ -544,10 +550,10 @@ TEST_CASE("solver on many ranks: what is not distributed yet is refused by name"
     CHECK_THROWS_WITH(elastic_solver(scene, options), Catch::Contains("volume_filter"));
     options.volume_filter = false;
     options.consistent_mass_iterations = 0;
-    using own_partition_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
+    using own_partition_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
                                                 gimlet::field_list<>, prepares_alone>;
     CHECK_THROWS_WITH(own_partition_solver(scene, options), Catch::Contains("distributes"));
-    using initializing_solver = gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
+    using initializing_solver = gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material, gimlet::contact::bardenhagen,
                                                gimlet::field_list<>, initializes_alone>;
     CHECK_THROWS_WITH(initializing_solver(scene, options), Catch::Contains("distributes"));
     // A rank count above the slabs: one cell, with the cubic B-spline's ghost nodes beyond each
@@ -567,7 +573,7 @@ TEST_CASE("solver on many ranks: what is not distributed yet is refused by name"
         if (comm.rank() == 0) first.particles().add();
         CHECK_THROWS_WITH(first.step(), Catch::Contains("not added or removed"));
     }
-    using cubic_solver = gimlet::solver<S, gimlet::shape::bspline_cubic, gimlet::elastic_material>;
+    using cubic_solver = gimlet::distributed_solver<S, gimlet::shape::bspline_cubic, gimlet::elastic_material>;
     options.processes = gimlet::mpi::make_ranks(comm);
     if (comm.size() > 3) CHECK_THROWS_WITH(cubic_solver(flat, options), Catch::Contains("MPI ranks") && Catch::Contains("1 .. 3"));
     else CHECK_NOTHROW(cubic_solver(flat, options));

@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
     scene.add_body(gimlet::scene::ball<S>(S::vector(0.75, 0.75), 0.2), mat, S::vector(-0.1, -0.1), 2, "upper");
     gimlet::solver_options<S> options;
     options.processes = gimlet::mpi::make_ranks();
-    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> many(scene, options), one(scene);
+    gimlet::distributed_solver<S, gimlet::shape::ugimp, gimlet::elastic_material> many(scene, options);
+    gimlet::solver<S, gimlet::shape::ugimp, gimlet::elastic_material> one(scene);
     for (int k = 0; k < 40; ++k) many.step(), one.step();
     const double a = gimlet::diagnostics::kinetic_energy(many), b = gimlet::diagnostics::kinetic_energy(one);
     const bool same = std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);

@@ -46,6 +46,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -60,8 +61,17 @@ using solver_fields_t = field_union_t<core_fields<S>, typename Sh::required_fiel
                                      typename C::required_fields, typename Part::required_fields, ExtraFields>;
 
 template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
-          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body,
+          bool Distributed = false>
 class solver;
+
+/// A solver that runs on many processes (solver_options::processes): gimlet::solver with its
+/// last parameter, Distributed, true. On one process (no processes given) it gives a plain
+/// solver's bits; gimlet::solver itself refuses processes, so that a program that never splits
+/// its run does not compile the exchanges, the migration and the windows.
+template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
+          FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
+using distributed_solver = solver<S, Sh, M, C, ExtraFields, Part, true>;
 
 /// Everything of gimlet::solver but its contact policy: the particles, the grid, the passes
 /// of a step and the public members that read them. Solvers that differ only in their contact
@@ -73,7 +83,9 @@ class solver;
 /// \tparam Fields the particles' fields (solver_fields_t).
 /// \tparam MultiField whether the contact policy keeps a velocity field per body
 ///         (contact::Contact's `multi_field`).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+/// \tparam Distributed whether it runs on many processes (gimlet::distributed_solver).
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part,
+          bool Distributed = false>
 class solver_core {
 public:
     /// The space S (dimension and scalar type).
@@ -126,7 +138,7 @@ public:
 private:
     // Only gimlet::solver builds, copies, destroys and reaches into a core: what is private to
     // the solver stays private, and a core is never a solver without its contact policy.
-    template <Space, shape::Shape, Material, contact::Contact, FieldList, multi_field::Partition>
+    template <Space, shape::Shape, Material, contact::Contact, FieldList, multi_field::Partition, bool>
     friend class solver;
 
     using particle_ref = gimlet::particle_ref<store_type>;
@@ -201,8 +213,14 @@ public:
     /// The silent guards that acted so far (health_events). A resumed run counts from its resume.
     [[nodiscard]] const health_events& health() const noexcept { return health_; }
 
-    /// The processes the run is split between (solver_options::processes), or null: one process.
-    [[nodiscard]] gimlet::processes* processes() const noexcept { return options_.processes.get(); }
+    /// Whether the solver can run on many processes (gimlet::distributed_solver).
+    static constexpr bool distributed = Distributed;
+    /// The processes the run is split between (solver_options::processes), or null: one process
+    /// (always, for a solver that is not a distributed_solver: its many-process paths fold away).
+    [[nodiscard]] gimlet::processes* processes() const noexcept {
+        if constexpr (Distributed) return options_.processes.get();
+        else return nullptr;
+    }
     /// Particle i's number in the whole run: its index in one process's store, whatever the
     /// number of processes (the seeding order, renumbered where the particles are sorted).
     [[nodiscard]] std::uint64_t ordinal(std::size_t i) const noexcept { return ordinal_.empty() ? i : ordinal_[i]; }
@@ -311,8 +329,7 @@ private:
     void timed(double& phase, F&& f, double* part = nullptr) {
         using clock = std::chrono::steady_clock;
         const auto start = clock::now();
-        if (processes()) together(f);
-        else f();
+        run_stage(&call_stage<std::remove_reference_t<F>>, const_cast<void*>(static_cast<const void*>(std::addressof(f))));
         const double lap = std::chrono::duration<double>(clock::now() - start).count();
         phase += lap;
         if (part) *part += lap;
@@ -542,7 +559,7 @@ private:
     // The same on many processes: every process checks where any was touched, and a bad
     // particle on one stops all (together) before the collectives that follow.
     void check_pending_across() {
-        if (processes()->max(state_touched_ ? 1.0 : 0.0) == 0) return;
+        if (many().max(state_touched_ ? 1.0 : 0.0) == 0) return;
         together([&] {
             require(particles_.size() == ordinal_.size(), "particles on this process after a change between steps",
                     double(particles_.size()),
@@ -569,9 +586,22 @@ private:
     }
 
     // ---- many processes (solver_options::processes) ---------------------------------------
+    // A stage `f` run by timed(): on one process called, on many inside together(). Through a
+    // function pointer that run_stage does not inline, so that each stage's body is compiled
+    // once, not once for each branch (it would double the compile time of every solver).
+    template <class F>
+    static void call_stage(void* f) {
+        (*static_cast<F*>(f))();
+    }
+    [[gnu::noinline]] void run_stage(void (*call)(void*), void* f) {
+        if (processes()) together([&] { call(f); });
+        else call(f);
+    }
     // f() on every process; where it throws on one, it throws on all, the message naming the
     // particle by its ordinal (describe_particle names it by its index in this process's store).
     void together(const std::function<void()>& f);
+    // The processes, in the members that only a run on many processes reaches.
+    [[nodiscard]] gimlet::processes& many() const noexcept { return *options_.processes; }
     // `message` with describe_particle's local index replaced by the particle's ordinal (into
     // *key where given).
     [[nodiscard]] std::string with_ordinal(const std::string& message, double* key = nullptr) const;
@@ -670,10 +700,11 @@ private:
 // the core keeps them, and the stages they lead to, out of a unit that only constructs and runs
 // a solver (docs/performance.md, "Memory, the largest scene, compile time").
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::solver_core(const scene::scene<S, M>& sc, const solver_options<S>& options, const Part& partition,
                          std::optional<double> friction)
     : options_(options), grid_(sc.grid(), Sh::stencil), partition_(partition) {
+    if constexpr (!Distributed) detail::refuse_processes_for_one_process_solver(options_.processes != nullptr);
     detail::check_setup(sc, options_, friction);
     for (const auto& b : sc.bodies()) materials_.push_back(b.material);
     // One velocity field per body (Bardenhagen et al. 2000), or the partition's number of
@@ -710,11 +741,11 @@ solver_core<S, Sh, M, Fields, MultiField, Part>::solver_core(const scene::scene<
     }
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-solver_core<S, Sh, M, Fields, MultiField, Part>::~solver_core() = default;
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::~solver_core() = default;
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::stable_time_step() const -> real {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::stable_time_step() const -> real {
     const real dt = detail::stable_time_step(particles_, materials_, grid_, options_, threads(), parallel_threshold, steps_,
                                              pending_health_);
     // The least of the processes' steps: C h / max (c + |v|) rounds monotonically in the speed.
@@ -722,8 +753,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::stable_time_step() const -
     return dt;
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::check_particles() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::check_particles() {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     auto& x = particles_.template column<fields::position>();
     std::ptrdiff_t first_bad = n;
@@ -738,66 +769,66 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::check_particles() {
     if (first_bad < n) fail(static_cast<std::size_t>(first_bad), problem(static_cast<std::size_t>(first_bad)));
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::check_step_start() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::check_step_start() {
     check_pending();
     count_health();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::group_into_slabs() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::group_into_slabs() {
     slabs_.bucket(std::ptrdiff_t(particles_.size()) >= parallel_threshold, threads());
     field_choice_.prepare(*this);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::start_grid() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::start_grid() {
     if (options_.volumetric_average) average_mean_stress();
     clear_grid();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::find_light_particles() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::find_light_particles() {
     lights_.find(*this);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::start_of_step_velocities() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::start_of_step_velocities() {
     nodal_velocity(grid_.velocity_old);
     grid_.velocity = grid_.velocity_old;
     grid_.apply_walls(grid_.velocity);
     if constexpr (has_driven_particles) driven_.impose(*this, grid_.velocity);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::clear_forces() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::clear_forces() {
     std::fill(grid_.force.begin(), grid_.force.end(), vector::Zero());
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::remapped_velocities() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::remapped_velocities() {
     nodal_velocity(grid_.velocity);
     grid_.apply_walls(grid_.velocity, wall_pass::keep);  // the grid update's decisions hold
     if constexpr (has_driven_particles) driven_.impose(*this, grid_.velocity);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::average_volumetric_rates() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::average_volumetric_rates() {
     volumetric_average_.average_rates(*this, grid_.velocity);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::average_mean_stress() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::average_mean_stress() {
     volumetric_average_.average_stress(*this);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::filter_volumes() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::filter_volumes() {
     if constexpr (has_reference_isentrope) volume_filter_.apply(*this);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils(std::size_t first) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::compute_stencils(std::size_t first) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size() - first);
     stencils_.resize(particles_.size());
     slabs_.resize(particles_.size());
@@ -808,15 +839,15 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::compute_stencils(std::size
             compute_stencil(first + static_cast<std::size_t>(i));
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::check_light_possible() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::check_light_possible() {
     lights_.check_possible(*this);  // on many processes, over every process's particles
     // (Light particles are refused on many processes so far.)
     if (processes() && lights_.possible()) detail::check_distributable<false>(options_, true);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::find_shared_nodes() {
     exchange_.find_shared_nodes(grid_, mass_cutoff_, steps_, double(time_), stencils_,
                                 particles_.template column<fields::mass>(), fields_per_body,
                                 [&](std::size_t i) { return entries(i); },
@@ -827,13 +858,13 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::find_shared_nodes() {
                                 std::ptrdiff_t(grid_.entries()) >= node_parallel_threshold, processes(), window_);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_all() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::scatter_all() {
     scatter<true>();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter_for_usf() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::scatter_for_usf() {
     if constexpr (multi_field) scatter<true>();
     else scatter<false>();
 }

@@ -5,6 +5,7 @@
 /// stencils start in its slabs, in ordinal order, so that every slab pass sums each node in the
 /// one-process order (processes::after_colour) and the run gives one process's bits.
 
+#include "gimlet/core/describe.hpp"
 #include "gimlet/solver/core.hpp"
 
 #include <algorithm>
@@ -13,7 +14,6 @@
 #include <cstring>
 #include <functional>
 #include <limits>
-#include <regex>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -21,8 +21,8 @@
 
 namespace gimlet {
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::together(const std::function<void()>& f) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::together(const std::function<void()>& f) {
     // As processes::together, but where several processes fail the lowest-numbered particle's
     // failure is the one reported, as one process reports it, named by its ordinal.
     std::string message;
@@ -39,26 +39,24 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::together(const std::functi
     } catch (...) {
         failed = true, message = "an exception that is not a std::exception";
     }
-    auto* p = processes();
+    auto* p = &many();
     detail::agree([&](double x) { return p->min(x); }, [&](const std::string* text) { return p->share(text); },
                   p->rank(), p->size(), failed, key, message, bad_input);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-std::string solver_core<S, Sh, M, Fields, MultiField, Part>::with_ordinal(const std::string& message, double* key) const {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+std::string solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::with_ordinal(const std::string& message, double* key) const {
     // describe_particle's "particle <index> (body": the index in this process's store.
-    static const std::regex named(R"(particle (\d+) \(body)");
-    std::smatch m;
-    if (!std::regex_search(message, m, named)) return message;
-    const auto i = std::size_t(std::stoull(m[1].str()));
-    if (i >= particles_.size()) return message;
-    if (key) *key = double(ordinal(i));  // ordinals are below 2^53: exact
-    return m.prefix().str() + "particle " + std::to_string(ordinal(i)) + " (body" + m.suffix().str();
+    const auto named = detail::find_named_particle(message);
+    if (!named || named->index >= particles_.size()) return message;
+    const std::uint64_t n = ordinal(named->index);
+    if (key) *key = double(n);  // ordinals are below 2^53: exact
+    return message.substr(0, named->at) + std::to_string(n) + message.substr(named->at + named->digits);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::count_health_across() {
-    auto& p = *processes();
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::count_health_across() {
+    auto& p = many();
     detail::pending_health& pending = pending_health_;
     // Whether every process has the guards of this step (a process whose particles were touched
     // since has none: then none counts them, as one process would not).
@@ -81,9 +79,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::count_health_across() {
     }
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
-    auto& p = *processes();
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::set_window() {
+    auto& p = many();
     const int slabs = slabs_.slabs(), me = p.rank();
     int first = slabs, last = -1;  // this process's slabs [first, last]
     for (int s = 0; s < slabs; ++s)
@@ -100,15 +98,15 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::set_window() {
 }
 
 // A particle's record for another process: its ordinal, then each column's value, byte for byte.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-std::size_t solver_core<S, Sh, M, Fields, MultiField, Part>::record_bytes() const {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+std::size_t solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::record_bytes() const {
     std::size_t bytes = sizeof(std::uint64_t);
     particles_.for_each_column([&](auto, const auto& column) { bytes += sizeof(column[0]); });
     return bytes;
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::append_record(std::size_t i, std::size_t record,
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::append_record(std::size_t i, std::size_t record,
                                                                     std::vector<std::byte>& out) const {
     std::size_t at = out.size();
     out.resize(at + record);
@@ -120,8 +118,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::append_record(std::size_t 
     });
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::read_record(const std::byte* record, store_type& to, std::size_t k) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::read_record(const std::byte* record, store_type& to, std::size_t k) {
     std::size_t at = sizeof(std::uint64_t);
     to.for_each_column([&](auto, auto& column) {
         std::memcpy(static_cast<void*>(&column[k]), record + at, sizeof(column[k]));
@@ -129,30 +127,30 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::read_record(const std::byt
     });
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::copy_particle(const store_type& from, std::size_t i, store_type& to,
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::copy_particle(const store_type& from, std::size_t i, store_type& to,
                                                                     std::size_t k) {
     from.for_each_column([&](auto tag, const auto& column) { to.template column<decltype(tag)>()[k] = column[i]; });
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::seed(const scene::scene<S, M>& sc) {
-    if (!processes()) {
-        detail::seed_particles(sc, grid_, particles_);
-        return;
-    }
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::seed(const scene::scene<S, M>& sc) {
+    // One call for one process and many (a hook that keeps every particle on one process), so
+    // that the seeding is compiled once.
+    auto* p = processes();
     ordinal_.clear();
     std::uint64_t seeded = 0;
     detail::seed_particles(sc, grid_, particles_, [&](store_type&, std::size_t first) {
+        if (!p) return;
         const std::size_t batch = particles_.size() - first;
         keep_own_from(first, seeded);
         seeded += batch;
     });
-    compute_stencils();
+    if (p) compute_stencils();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::keep_own_particles() {
     ordinal_.clear();
     keep_own_from(0, 0);
     particles_.shrink_to_fit();  // the room the whole run's particles took
@@ -161,13 +159,13 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_particles() {
     compute_stencils();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_from(std::size_t first, std::uint64_t ordinal) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::keep_own_from(std::size_t first, std::uint64_t ordinal) {
     compute_stencils(first);
-    const int me = processes()->rank();
+    const int me = many().rank();
     std::size_t kept = first;
     for (std::size_t i = first; i < particles_.size(); ++i, ++ordinal) {
-        if (processes()->owner(int(slabs_.slab_of()[i])) != me) continue;
+        if (many().owner(int(slabs_.slab_of()[i])) != me) continue;
         if (kept != i) copy_particle(particles_, i, particles_, kept);
         ordinal_.push_back(ordinal);
         ++kept;
@@ -175,9 +173,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::keep_own_from(std::size_t 
     particles_.resize(kept);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
-    auto& p = *processes();
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::migrate() {
+    auto& p = many();
     const int me = p.rank();
     const auto ranks = std::size_t(p.size());
     const auto& slab = slabs_.slab_of();
@@ -225,14 +223,14 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::migrate() {
     compute_stencils();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::renumber() {
-    const std::uint64_t below = processes()->exclusive_sum(particles_.size());
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::renumber() {
+    const std::uint64_t below = many().exclusive_sum(particles_.size());
     for (std::size_t k = 0; k < ordinal_.size(); ++k) ordinal_[k] = below + k;
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::gathered_particles() const -> store_type {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::gathered_particles() const -> store_type {
     auto* p = processes();
     if (!p) return particles_;
     const std::size_t record = record_bytes();
@@ -255,17 +253,17 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::gathered_particles() const
     return whole;
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::replace_particles(store_type whole) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::replace_particles(store_type whole) {
     particles_ = std::move(whole);  // moved in where the caller gives it up: one copy of the whole run, not two
     state_touched_ = true;
     pending_health_.valid = false;
     if (processes()) keep_own_particles();
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
 template <class Get, class Merge>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::merge_shared(std::size_t blocks, Get& get, Merge& merge) {
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::merge_shared(std::size_t blocks, Get& get, Merge& merge) {
     using value = std::remove_cvref_t<std::invoke_result_t<Get&, std::size_t>>;
     static_assert(std::is_trivially_copyable_v<value>, "across.merge_shared: get(e) returns a value copied byte for byte");
     auto* p = processes();
@@ -299,8 +297,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::merge_shared(std::size_t b
     }
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-bool solver_core<S, Sh, M, Fields, MultiField, Part>::owns_node(std::size_t node) const {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+bool solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::owns_node(std::size_t node) const {
     auto* p = processes();
     if (!p) return true;
     const int row = int(node / std::size_t(grid_.stride(dim - 1)));

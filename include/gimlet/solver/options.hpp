@@ -116,6 +116,7 @@ struct solver_options {
     bool volumetric_average = false;
     /// The processes the run is split between (gimlet::mpi::make_ranks: the grid's slabs along
     /// its last axis, each process the particles of its own); null, the default: one process.
+    /// Taken by a gimlet::distributed_solver; a plain gimlet::solver refuses them.
     /// Every process builds the same scene and runs the same calls; particle states, time steps,
     /// the conservation sums and hot_material are bitwise those of one process, for any number of
     /// them (docs/guide.md, "Many processes (MPI)", lists what is refused).

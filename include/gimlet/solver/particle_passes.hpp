@@ -16,8 +16,8 @@ namespace gimlet {
 
 // USF: L_p = sum v_i (x) G_ip, F update, then the constitutive policies (docs/physics.md
 // section 1, step 5 and section 4: sigma = s - (P + q) I), before the forces are mapped.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(real dt) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::update_material_points(real dt) {
     material_pass(dt, grid_.velocity, true, [](std::size_t) { return true; });
 }
 
@@ -27,9 +27,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_points(rea
 // lowest-numbered broken particle (n if none); an update's error is thrown for the
 // lowest-numbered particle once every particle is done, before the broken ones are reported
 // (the order two separate passes would report them in).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
 template <class After>
-std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part>::material_pass(real dt, const std::vector<vector>& vg,
+std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::material_pass(real dt, const std::vector<vector>& vg,
                                                                      bool update_materials, After&& after) {
     const auto n = static_cast<std::ptrdiff_t>(particles_.size());
     std::ptrdiff_t failed = n, first_bad = n;
@@ -62,8 +62,8 @@ std::ptrdiff_t solver_core<S, Sh, M, Fields, MultiField, Part>::material_pass(re
 // The velocity gradient L_p = sum_i v_i (x) G_ip of particle i from the grid velocities vg
 // (a light particle's from its reliable nodes), with volumetric averaging the cell's mean
 // volumetric rate.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::velocity_gradient(
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::velocity_gradient(
     std::size_t i, const std::vector<vector>& vg, [[maybe_unused]] real* hoop_rate) const -> matrix {
     matrix L = matrix::Zero();
     if (lights_.is_light(i)) {
@@ -87,8 +87,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::velocity_gradient(
     return L;
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_point(
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::update_material_point(
     std::size_t i, real dt, const std::vector<vector>& vg) {
     auto p = particles_[i];
     const M& mat = materials_[p.template get<fields::body>()];
@@ -106,8 +106,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_point(
 // materials; gimlet::update_material_points_2): the same bits as one at a time. False, with
 // nothing written, for two bodies or where either particle would stop the run: the caller
 // then updates them one at a time, which names the particle.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-bool solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_pair(
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+bool solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::update_material_pair(
     std::size_t i, real dt, const std::vector<vector>& vg) {
 #if GIMLET_HAS_LANES
     if constexpr (material_group == 2) {
@@ -129,8 +129,8 @@ bool solver_core<S, Sh, M, Fields, MultiField, Part>::update_material_pair(
 
 // V_p sigma_p as the nodal forces take it: with volumetric averaging, the particle's in-plane
 // mean stress replaced by its cell's volume-weighted mean (stages::volumetric_average).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i) const -> matrix {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::force_stress(std::size_t i) const -> matrix {
     const matrix& sig = particles_.template column<fields::stress>()[i];
     const real v = current_volume(particles_[i]);
     if (!options_.volumetric_average) return v * sig;
@@ -139,8 +139,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::force_stress(std::size_t i
 
 // V_p sigma_thetatheta (axisymmetric space): the hoop stress's share of the radial force,
 // f_ir -= V_p sigma_thetatheta T_ip (docs/equations.md, "Axisymmetric GIMP").
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::hoop_force_stress(std::size_t i) const -> real {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::hoop_force_stress(std::size_t i) const -> real {
     if constexpr (axisymmetric) return current_volume(particles_[i]) * particles_.template column<fields::stress_zz>()[i];
     else return (void)i, real(0);
 }
@@ -149,8 +149,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::hoop_force_stress(std::siz
 // USL), then what check_particles does (wrap, stop on a broken particle). A material error
 // is reported before a failed check, each for the lowest-numbered particle, as two separate
 // passes would report them.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::finish_step(real dt, bool update_materials) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::finish_step(real dt, bool update_materials) {
     auto& x = particles_.template column<fields::position>();
     const std::ptrdiff_t first_bad = material_pass(dt, grid_.velocity, update_materials, [&](std::size_t i) {
         grid_.wrap(x[i]);
@@ -166,8 +166,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::finish_step(real dt, bool 
 
 // Stable counting sort of the particles on the first node of their stencil (a cell of the
 // grid), applied to every field and to the stencils.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::sort_by_cell() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::sort_by_cell() {
     const std::size_t n = particles_.size(), cells = grid_.size();
     std::vector<std::size_t> start(cells + 1, 0), order(n);
     auto key = [&](std::size_t i) {

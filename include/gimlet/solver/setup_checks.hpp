@@ -66,6 +66,15 @@ void check_options_for(const solver_options<S>& options, bool has_reference_isen
                                 "0 on a grid of more than 4294967295 node entries");
 }
 
+/// Processes given to a solver compiled for one process (gimlet::solver's Distributed false):
+/// refused by name, pointing to gimlet::distributed_solver.
+inline void refuse_processes_for_one_process_solver(bool given) {
+    if (given)
+        throw invalid_parameter("solver_options::processes with a gimlet::solver", "set",
+                                "null: a solver that runs on many processes is a gimlet::distributed_solver "
+                                "(gimlet::solver with its last parameter, Distributed, true)");
+}
+
 /// On many processes (solver_options::processes): what the distributed step does not do yet,
 /// refused by name. `Unsupported`: driven particles, an axisymmetric space or a partition with
 /// hooks that does not say it distributes (multi_field::Partition); `light_possible`: whether any particle can be

@@ -128,7 +128,7 @@ public:
     void for_each(bool parallel, int threads, F&& f, X&& exchange = X{}) const {
         if constexpr (!std::is_same_v<std::remove_cvref_t<X>, no_exchange>)
             if (exchange.active()) return for_each_exchanging(nullptr, parallel, threads, f, exchange);
-        for_each_kept(nullptr, parallel, threads, std::forward<F>(f));
+        for_each_kept(nullptr, parallel, threads, f);
     }
 
     /// for_each over the slabs whose particles' stencils can reach a node row r (of the last
@@ -149,23 +149,17 @@ public:
         }
         if constexpr (!std::is_same_v<std::remove_cvref_t<X>, no_exchange>)
             if (exchange.active()) return for_each_exchanging(keep_.data(), parallel, threads, f, exchange);
-        for_each_kept(keep_.data(), parallel, threads, std::forward<F>(f));
+        for_each_kept(keep_.data(), parallel, threads, f);
     }
 
 private:
-    // for_each_kept with an exchange after each colour: a parallel region per colour.
+    // for_each_kept with an exchange after each colour: a parallel region per colour. The same
+    // for_each_kept as without one (f passed as the same lvalue), so that each pass's body is
+    // compiled once, not once for each path.
     template <class F, class X>
     void for_each_exchanging(const std::uint8_t* keep, bool parallel, int threads, F& f, X& exchange) const {
         for (std::size_t c = 0; c < colour_slabs_.size(); ++c) {
-            const auto& slabs = colour_slabs_[c];
-            thread_shares colour(std::ptrdiff_t(slabs.size()), threads, parallel);
-            GIMLET_OMP(parallel num_threads(colour.team()))
-            for (auto claimed = colour.start(); colour.claim(claimed);)
-                for (std::ptrdiff_t j = claimed.first, end = claimed.last; j < end; ++j) {
-                    const auto s = static_cast<std::size_t>(slabs[static_cast<std::size_t>(j)]);
-                    if (keep && !keep[s]) continue;
-                    for (std::size_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k) f(slab_particles_[k]);
-                }
+            for_each_kept(keep, parallel, threads, f, c, c + 1);
             exchange.after_colour(int(c));
         }
         exchange.finish();
@@ -185,17 +179,19 @@ private:
         std::size_t last = 0;
     };
 
-    // for_each over the slabs s with keep[s] != 0 (all where keep is null).
+    // for_each over the slabs s with keep[s] != 0 (all where keep is null), of the colours
+    // [first, end) in one parallel region.
     template <class F>
-    void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F&& f) const {
+    void for_each_kept(const std::uint8_t* keep, bool parallel, int threads, F& f, std::size_t first = 0,
+                       std::size_t end = 3) const {
         // Each thread the same slabs of a colour in every pass, so their particles and nodes
         // stay near its core, and a thread done early takes over slabs of the others' shares
         // (thread_shares; solver/core.hpp, above parallel_threshold, says why). A colour's slabs
         // are shared by count, not by the particles they hold (a split by particles measured
         // no faster on 2 threads: docs/performance.md, "How the step is organised for speed").
         colour_shares shares(colour_slabs_, threads, parallel);
-        GIMLET_OMP(parallel num_threads(shares.of[0].team()))
-        for (std::size_t c = 0; c <= shares.last; ++c) {
+        GIMLET_OMP(parallel num_threads(shares.of[first].team()))
+        for (std::size_t c = first; c < end && c <= shares.last; ++c) {
             const auto& slabs = colour_slabs_[c];
             if (slabs.empty()) continue;  // the same for every thread: no barrier for an empty colour
             thread_shares& colour = shares.of[c];
@@ -207,7 +203,7 @@ private:
                 }
             // Slabs of one colour share no node; those of the next may share nodes with these,
             // so no thread starts the next colour before every thread has ended this one.
-            if (c < shares.last) {
+            if (c < shares.last && c + 1 < end) {
                 GIMLET_OMP(barrier)
             }
         }

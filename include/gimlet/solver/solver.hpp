@@ -36,14 +36,19 @@ namespace gimlet {
 ///         observers, or fields::external_acceleration for a per-particle body force).
 /// \tparam Part with multi-field contact, how each body is divided among velocity fields at the
 ///         nodes (multi_field::Partition; default one field per body).
+/// \tparam Distributed true where the run may be split between processes
+///         (solver_options::processes; gimlet::distributed_solver names it): false compiles
+///         one process's step alone and refuses processes.
 ///
 /// The particle store holds exactly the union of the fields the policies declare; a policy
 /// that is off (thermal::none, viscosity::none) adds no field and its steps are compiled out.
 /// All but the contact policy's part of a step is gimlet::solver_core, which solvers that differ
 /// only in their law share; the schemes below call its stages in their order.
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-class solver : public solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part> {
-    using core = solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part>;
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part,
+          bool Distributed>
+class solver
+    : public solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part, Distributed> {
+    using core = solver_core<S, Sh, M, solver_fields_t<S, Sh, M, C, ExtraFields, Part>, C::multi_field, Part, Distributed>;
 
 public:
     using typename core::real;
@@ -302,8 +307,9 @@ private:
 // Not inline, so that an `extern template` declaration of the solver keeps it, and the step it
 // leads to, out of a unit that only constructs and runs it (docs/performance.md, "Memory, the
 // largest scene, compile time").
-template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part>
-auto solver<S, Sh, M, C, ExtraFields, Part>::advance(real dt, bool chosen) -> real {
+template <Space S, shape::Shape Sh, Material M, contact::Contact C, FieldList ExtraFields, multi_field::Partition Part,
+          bool Distributed>
+auto solver<S, Sh, M, C, ExtraFields, Part, Distributed>::advance(real dt, bool chosen) -> real {
     // The consistent mass's entry list serves this step only, however it ends.
     struct forget_list {
         decltype(core::consistent_mass_)& stage;

@@ -20,9 +20,9 @@ namespace gimlet {
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1) in one pass;
 // in an axisymmetric space f_ir gains -sum V_p sigma_thetatheta T_ip (docs/equations.md,
 // "Axisymmetric GIMP").
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
 template <bool Forces>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::scatter() {
     const auto& m = particles_.template column<fields::mass>();
     const auto& v = particles_.template column<fields::velocity>();
     const vector b = options_.body_force.template cast<real>();
@@ -73,8 +73,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::scatter() {
 
 // f_i = -sum V_p sigma_p G_ip + sum S_ip m_p b (docs/physics.md section 1, step 1), after USF's
 // stress update.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::map_forces() {
     const auto& m = particles_.template column<fields::mass>();
     const vector b = options_.body_force.template cast<real>();
     const bool loaded = !b.isZero() || store_type::template has<fields::external_acceleration>;
@@ -105,8 +105,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::map_forces() {
 
 // v_i = (mv)_i / m_i, a weighted mean of the particles' velocities, wherever m_i > 0
 // (docs/physics.md section 1, step 2).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::nodal_velocity(std::vector<vector>& out) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::nodal_velocity(std::vector<vector>& out) {
     for_each_swept_entry([&](std::size_t i) {
         out[i] = grid_.mass[i] > 0 ? vector(grid_.momentum[i] / grid_.mass[i]) : vector::Zero();
     });
@@ -115,66 +115,46 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::nodal_velocity(std::vector
 // The nodal arrays of the swept field slots are cleared every step (the others are empty
 // already: swept_fields()); on a large grid that is memory-bound work a single thread would do
 // while the others wait, so it is split between the threads.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::clear_grid() {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::clear_grid() {
     for_each_swept_entry([&](std::size_t e) { grid_.clear_entry(e); });
 }
 
 // `out` holds one value per grid entry; the slots not swept this step hold `value` already
 // (the callers fill with zero, and nothing writes there while a slot is not swept).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::fill_entries(std::vector<vector>& out, const vector& value) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::fill_entries(std::vector<vector>& out, const vector& value) {
     assert(out.size() == grid_.entries());
     for_each_swept_entry([&](std::size_t e) { out[e] = value; });
 }
 
-// All the entries, or where a body's later field slots are not swept (swept_fields()),
-// its first slot's: runs of up to `run` entries, handed to the threads in a fixed split.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+// The entries of the field slots swept this step (swept_fields(): every slot, or each body's
+// first ones), on many processes of the node rows this process's particles reach (window_: its
+// slabs and the band above them; the rest of the grid is never written here): runs of up to
+// `run` entries, handed to the threads in a fixed split. One loop for every case, so that each
+// pass's body is compiled once.
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
 template <class F>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f) {
-    const std::size_t nodes = grid_.size(), swept = swept_fields();
-    if (!window_.empty()) {
-        // On many processes, the node rows this process's particles reach (its slabs and the band
-        // above them): the rest of the grid is never written here, so never swept.
-        constexpr std::size_t run = 1024;
-        runs_.clear();
-        const std::size_t blocks = grid_.entries() / nodes;
-        for (std::size_t block = 0; block < blocks; ++block) {
-            if (block % fields_per_body >= swept) continue;
-            for (const auto& [a, b] : window_)
-                for (std::size_t e = block * nodes + a, end = block * nodes + b; e < end; e += run)
-                    runs_.push_back({e, std::min(end, e + run)});
-        }
-        const auto n = static_cast<std::ptrdiff_t>(runs_.size());
-        detail::thread_shares shares(n, threads(), n * std::ptrdiff_t(run) >= node_parallel_threshold);
-        GIMLET_OMP(parallel num_threads(shares.team()))
-        for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
-                for (std::size_t e = runs_[std::size_t(k)].first, last = runs_[std::size_t(k)].second; e < last; ++e) f(e);
-        return;
-    }
-    if (swept == fields_per_body) {
-        const auto n = static_cast<std::ptrdiff_t>(grid_.entries());
-        detail::thread_shares shares(n, threads(), n >= node_parallel_threshold);
-        GIMLET_OMP(parallel num_threads(shares.team()))
-        for (auto claimed = shares.start(); shares.claim(claimed);)
-            for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) f(static_cast<std::size_t>(k));
-        return;
-    }
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::for_each_swept_entry(F&& f) {
     constexpr std::size_t run = 1024;
-    const std::size_t runs_per_slot = (nodes + run - 1) / run, slots = materials_.size() * swept;
-    const auto runs = static_cast<std::ptrdiff_t>(slots * runs_per_slot);
-    const bool parallel = static_cast<std::ptrdiff_t>(slots * nodes) >= node_parallel_threshold;
-    detail::thread_shares shares(runs, threads(), parallel);
+    const std::size_t nodes = grid_.size(), swept = swept_fields(), blocks = grid_.entries() / nodes;
+    const std::pair<std::size_t, std::size_t> whole{0, nodes};
+    const auto* ranges = window_.empty() ? &whole : window_.data();
+    const std::size_t range_count = window_.empty() ? 1 : window_.size();
+    runs_.clear();
+    std::size_t entries = 0;
+    for (std::size_t block = 0; block < blocks; ++block) {
+        if (block % fields_per_body >= swept) continue;  // body * fields_per_body + field
+        for (std::size_t r = 0; r < range_count; ++r)
+            for (std::size_t e = block * nodes + ranges[r].first, end = block * nodes + ranges[r].second; e < end; e += run)
+                runs_.push_back({e, std::min(end, e + run)}), entries += runs_.back().second - e;
+    }
+    const auto n = static_cast<std::ptrdiff_t>(runs_.size());
+    detail::thread_shares shares(n, threads(), std::ptrdiff_t(entries) >= node_parallel_threshold);
     GIMLET_OMP(parallel num_threads(shares.team()))
     for (auto claimed = shares.start(); shares.claim(claimed);)
-        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k) {
-            const std::size_t slot = std::size_t(k) / runs_per_slot, r = std::size_t(k) % runs_per_slot;
-            const std::size_t block = (slot / swept) * fields_per_body + slot % swept;  // body * fields_per_body + field
-            const std::size_t first = block * nodes + r * run, last = block * nodes + std::min(nodes, (r + 1) * run);
-            for (std::size_t e = first; e < last; ++e) f(e);
-        }
+        for (std::ptrdiff_t k = claimed.first, end = claimed.last; k < end; ++k)
+            for (std::size_t e = runs_[std::size_t(k)].first, last = runs_[std::size_t(k)].second; e < last; ++e) f(e);
 }
 
 // v_i^n = (mv)_i / m_i (with_old_velocity; USF has it already), the forces of the consistent
@@ -182,8 +162,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::for_each_swept_entry(F&& f
 // v_i^{n+1} = (mv)_i / m_i, then the walls (docs/physics.md section 1, step 2). A node under the
 // mass cut-off keeps v_i^n: its force is never divided by its mass, it goes back to the
 // particles that exerted it (grid_to_particles).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real dt, bool with_old_velocity) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::update_grid_momentum(real dt, bool with_old_velocity) {
     consistent_mass_.apply(*this);  // solver_options::consistent_mass_iterations; nothing at 0
     for_each_swept_entry([&](std::size_t i) {
         const real mi = grid_.mass[i];
@@ -213,14 +193,14 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::update_grid_momentum(real 
 
 // Whether node entry e, with particle weight w and gradient g, is a light node of the
 // particle's (a stencil node it neither weighs nor pushes is not).
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-bool solver_core<S, Sh, M, Fields, MultiField, Part>::on_light_node(std::size_t e, real w, const vector& g) const {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+bool solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::on_light_node(std::size_t e, real w, const vector& g) const {
     return !(grid_.mass[e] > mass_cutoff_) && (w != 0 || !g.isZero());
 }
 
 // dt f_ip / m_p summed over particle i's light nodes, as far as the walls leave it free.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_node_change(std::size_t i, real dt) const -> vector {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+auto solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::light_node_change(std::size_t i, real dt) const -> vector {
     const auto& m = particles_.template column<fields::mass>();
     const matrix vs = force_stress(i);
     vector mb = m[i] * options_.body_force.template cast<real>();
@@ -251,8 +231,8 @@ auto solver_core<S, Sh, M, Fields, MultiField, Part>::light_node_change(std::siz
 // each particle's new momentum is scattered back to the grid in the same pass (docs/physics.md
 // section 1, step 4): the gather reads grid velocities only and the scatter writes grid
 // momenta only.
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles(real dt, bool remap) {
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::grid_to_particles(real dt, bool remap) {
     // Particles far lighter than their neighbours first (stages/light_particles.hpp): they take their
     // velocities here, and the others take back the momentum they changed below.
     // The pass is compiled twice: a scene without light particles runs the plain one.
@@ -260,9 +240,9 @@ void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles(real dt,
     else grid_to_particles_pass<true>(dt, remap);
 }
 
-template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part>
+template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>
 template <bool Lights>
-void solver_core<S, Sh, M, Fields, MultiField, Part>::grid_to_particles_pass(real dt, bool remap) {
+void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::grid_to_particles_pass(real dt, bool remap) {
     auto& x = particles_.template column<fields::position>();
     auto& v = particles_.template column<fields::velocity>();
     auto& energy = particles_.template column<fields::specific_internal_energy>();
