@@ -148,8 +148,8 @@ struct run_files {
     std::filesystem::path restart;     // empty: a fresh run
     bool quiet = false;
     plotter* figures = nullptr;  // none: no figures
-    // On many processes: theirs (solver_options::processes); only the first one writes, prints
-    // and draws (`writer`).
+    // On many processes: theirs (solver_options::processes; built with MPI, where example::solver
+    // is a distributed_solver); only the first one writes, prints and draws (`writer`).
     std::shared_ptr<gimlet::processes> processes;
     bool writer = true;
 };

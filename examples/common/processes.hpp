@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The processes an example runs on (examples' helper, not part of the library): under mpirun
-// where it is built with MPI (gimlet::mpi; GIMLET_EXAMPLE_MPI), else one. The first process
+// where it is built with MPI (gimlet::mpi; GIMLET_EXAMPLE_MPI), else one; and the examples'
+// solver type (example::solver), a distributed_solver where so built. The first process
 // writes, prints and draws.
 
 #include <gimlet/core/processes.hpp>

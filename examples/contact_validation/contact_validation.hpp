@@ -34,7 +34,8 @@ struct settings {
     double viscosity_linear = 0.06;    // viscosity::bulk's b1
     double viscosity_quadratic = 1.2;  // viscosity::bulk's b2
     double cfl = gimlet::solver_options<gimlet::space<2>>{}.cfl;  // solver_options::cfl
-    // On many processes: each run's processes (solver_options::processes; one object a solver).
+    // On many processes: each run's processes (solver_options::processes; one object a solver),
+    // taken where the example is built with MPI (example::solver is then a distributed_solver).
     std::function<std::shared_ptr<gimlet::processes>()> processes;
 };
 

@@ -111,7 +111,8 @@ struct shared_band {
     int slab = 0;
 };
 
-/// The processes a solver is split between (solver_options::processes): each owns whole slabs
+/// The processes a solver is split between (solver_options::processes of a
+/// gimlet::distributed_solver; a plain gimlet::solver refuses them): each owns whole slabs
 /// of the grid along its last axis and the particles whose stencils start in them. The solver
 /// calls every member on every process alike (they are collective); a program's own code that
 /// calls one (diagnostics do) must too. gimlet::mpi::ranks is the MPI implementation.
@@ -166,8 +167,8 @@ public:
 };
 
 namespace detail {
-/// A solver's processes (solver_options::processes; its processes()), or null: one process, or
-/// an object without processes().
+/// A solver's processes (solver_options::processes; its processes()), or null: one process (a
+/// plain gimlet::solver's are always null), or an object without processes().
 template <class Solver>
 [[nodiscard]] gimlet::processes* processes_of(const Solver& s) {
     if constexpr (requires { s.processes(); }) return s.processes();

@@ -30,8 +30,8 @@ namespace gimlet::io {
 /// File names are stored relative to the .pvd's directory, so the output directory can be
 /// moved or copied as a whole.
 ///
-/// On many processes, every process makes the series with the solver's processes
-/// (solver_options::processes) and calls each member alike (they are collective): the first
+/// On many processes (a gimlet::distributed_solver given solver_options::processes), every
+/// process makes the series with the solver's processes and calls each member alike (they are collective): the first
 /// process writes the .pvd, each snapshot is a `.pvtp` of one piece a process
 /// (vtp_writer::write_pieces), nothing gathered, and a failure on any process throws
 /// gimlet::processes_stopped on all (with the message below; its bad_input() is true) where one

@@ -200,8 +200,9 @@ private:
     std::vector<MPI_Request> requests_;
 };
 
-/// A solver on the ranks of an MPI communicator (solver_options::processes = the shared pointer
-/// make_ranks gives): the gimlet::processes a solver calls, on MPI.
+/// A solver on the ranks of an MPI communicator (solver_options::processes of a
+/// gimlet::distributed_solver = the shared pointer make_ranks gives): the gimlet::processes a
+/// solver calls, on MPI.
 class ranks final : public processes {
 public:
     /// The ranks of `comm`, on a duplicate of it: the library's messages never meet the
@@ -261,7 +262,8 @@ private:
     slab_layout layout_;
 };
 
-/// The processes of `comm` for solver_options::processes.
+/// The processes of `comm` for solver_options::processes, of a gimlet::distributed_solver (a
+/// plain gimlet::solver refuses them).
 [[nodiscard]] inline std::shared_ptr<processes> make_ranks(const communicator& comm = communicator{}) {
     return std::make_shared<ranks>(comm);
 }

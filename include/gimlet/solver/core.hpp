@@ -49,6 +49,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -67,8 +68,9 @@ class solver;
 
 /// A solver that runs on many processes (solver_options::processes): gimlet::solver with its
 /// last parameter, Distributed, true. On one process (no processes given) it gives a plain
-/// solver's bits; gimlet::solver itself refuses processes, so that a program that never splits
-/// its run does not compile the exchanges, the migration and the windows.
+/// solver's bits; gimlet::solver itself refuses processes, so that in a program that never
+/// splits its run the exchanges, the migration and the windows are constant branches that the
+/// optimiser removes.
 template <Space S, shape::Shape Sh, Material M, contact::Contact C = contact::single_field,
           FieldList ExtraFields = field_list<>, multi_field::Partition Part = multi_field::by_body>
 using distributed_solver = solver<S, Sh, M, C, ExtraFields, Part, true>;

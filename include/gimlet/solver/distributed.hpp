@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The solver on many processes (solver_options::processes): each process the particles whose
+/// The solver on many processes (a gimlet::distributed_solver given solver_options::processes),
+/// and the seeding and gathering every solver has: each process the particles whose
 /// stencils start in its slabs, in ordinal order, so that every slab pass sums each node in the
 /// one-process order (processes::after_colour) and the run gives one process's bits.
 
@@ -141,6 +142,7 @@ void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::seed(const sc
     ordinal_.clear();
     std::uint64_t seeded = 0;
     detail::seed_particles(sc, grid_, particles_, [&](store_type&, std::size_t first) {
+        if constexpr (!Distributed) return (void)first;  // a plain solver compiles no thinning
         if (!p) return;
         const std::size_t batch = particles_.size() - first;
         keep_own_from(first, seeded);
