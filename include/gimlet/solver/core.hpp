@@ -540,7 +540,8 @@ private:
 
     // The guards of the time step this step takes (stable_time_step), into health_.
     void count_health() {
-        if (processes()) return count_health_across();
+        if constexpr (Distributed)
+            if (processes()) return count_health_across();
         pending_health_.commit(health_, steps_, [&](std::size_t i) {
             return describe_particle(particles_[i], steps_, double(time_));
         });
@@ -552,7 +553,8 @@ private:
     // checked before anything uses it, so a bad value is blamed on its own particle, not on a
     // neighbour or on the time step it would spoil.
     void check_pending() {
-        if (processes()) return check_pending_across();
+        if constexpr (Distributed)
+            if (processes()) return check_pending_across();
         if (!state_touched_) return;
         check_particles();
         check_light_possible();  // the masses or volumes may have changed
@@ -596,8 +598,9 @@ private:
         (*static_cast<F*>(f))();
     }
     [[gnu::noinline]] void run_stage(void (*call)(void*), void* f) {
-        if (processes()) together([&] { call(f); });
-        else call(f);
+        if constexpr (Distributed)
+            if (processes()) return together([&] { call(f); });
+        call(f);
     }
     // f() on every process; where it throws on one, it throws on all, the message naming the
     // particle by its ordinal (describe_particle names it by its index in this process's store).
@@ -717,14 +720,15 @@ solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::solver_core(const 
     detail::check_options_for(options_, has_reference_isentrope, grid_.size() * fields);
     if (processes()) detail::check_distributable<!distributable>(options_, false);  // light particles below
     slabs_.set_up(grid_.nodes(dim - 1), grid_.periodic(dim - 1));
-    if (auto* p = processes()) {
-        p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
-        set_window();
-        // A failure while seeding (a bad scene, no memory for a process's share) stops all.
-        p->together([&] { seed(sc); });
-    } else {
-        seed(sc);
-    }
+    auto* p = processes();
+    if constexpr (Distributed)
+        if (p) {
+            p->set_up(slabs_.layout(std::size_t(grid_.stride(dim - 1)), grid_.size()));
+            set_window();
+        }
+    // A failure while seeding (a bad scene, no memory for a process's share) stops all.
+    if (p) p->together([&] { seed(sc); });
+    else seed(sc);
     real heaviest = 0;
     for (real m : particles_.template column<fields::mass>()) heaviest = std::max(heaviest, m);
     if (auto* p = processes()) heaviest = real(p->max(double(heaviest)));  // exact: the whole run's

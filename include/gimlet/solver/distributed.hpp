@@ -260,7 +260,8 @@ void solver_core<S, Sh, M, Fields, MultiField, Part, Distributed>::replace_parti
     particles_ = std::move(whole);  // moved in where the caller gives it up: one copy of the whole run, not two
     state_touched_ = true;
     pending_health_.valid = false;
-    if (processes()) keep_own_particles();
+    if constexpr (Distributed)
+        if (processes()) keep_own_particles();
 }
 
 template <Space S, shape::Shape Sh, Material M, FieldList Fields, bool MultiField, multi_field::Partition Part, bool Distributed>

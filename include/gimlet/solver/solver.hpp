@@ -204,11 +204,13 @@ private:
         // reference to the store kept from an earlier particles() call, which no flag sees.
         core::timed(t.particle_to_grid, [&] { this->compute_stencils(); }, &t.weights);
         // On many processes, each particle to the process of its stencil's slab.
-        if (this->processes()) core::timed(t.particle_to_grid, [&] { this->migrate(); }, &t.slabs);
+        if constexpr (Distributed)
+            if (this->processes()) core::timed(t.particle_to_grid, [&] { this->migrate(); }, &t.slabs);
         core::timed(t.sort, [&] {
             if (!this->sort_due()) return;
             this->sort_by_cell();
-            if (this->processes()) this->renumber();
+            if constexpr (Distributed)
+                if (this->processes()) this->renumber();
         });
         core::timed(t.particle_to_grid, [&] { this->group_into_slabs(); }, &t.slabs);
         core::timed(t.particle_to_grid, [&] { this->start_grid(); });
