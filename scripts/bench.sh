@@ -102,7 +102,7 @@ else
 fi
 load "roofline end / many cores start"
 # Strong scaling to this machine's cores and the machine's own ceiling (docs/performance.md,
-# "Scaling to 16 threads, measured"): where it has 8 cores or more, or at toy sizes with --quick.
+# "Scaling to 16 threads"): where it has 8 cores or more, or at toy sizes with --quick.
 if [ "$quick" = 1 ] || [ "$(nproc)" -ge 8 ]; then
     bash benchmarks/scaling/many_cores.sh "$build" $([ "$quick" = 1 ] && echo --quick) | tee "$out/many_cores.txt" \
         || echo "bench.sh: benchmarks/scaling/many_cores.sh failed (above); going on" >&2

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Strong scaling on a many-core machine (docs/performance.md, "Scaling to 16 threads,
-# measured"): what N threads give against one, and what the machine itself gives N independent
+# Strong scaling on a many-core machine (docs/performance.md, "Scaling to 16 threads"):
+# what N threads give against one, and what the machine itself gives N independent
 # one-thread processes. Run by scripts/bench.sh where there are 8 cores or more (or with
 # --quick, at toy sizes, anywhere); by hand:
 #
